@@ -1,0 +1,42 @@
+# zwidth: `make run` starts the program, `make test` runs the tests and the linter.
+SHELL := /bin/bash
+.SHELLFLAGS := -euo pipefail -c
+
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+PROFILE ?= resources/profiles/hbfd.json
+
+.PHONY: setup venv system-deps run test lint clean distclean
+
+# Check (and as root install) the system libraries Qt needs; create the venv; install the
+# project editable with its test extra, again only when pyproject.toml changes.
+setup venv: system-deps $(STAMP)
+
+system-deps:
+	bash packaging/system-deps.sh
+
+$(PY):
+	$(PYTHON) -m venv $(VENV)
+
+$(STAMP): pyproject.toml | $(PY)
+	$(PY) -m pip install -e '.[test]'
+	touch $(STAMP)
+
+run: setup
+	$(VENV)/bin/zwidth $(PROFILE)
+
+test: setup
+	QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q
+	$(VENV)/bin/ruff check analysis app tests
+
+lint: setup
+	$(VENV)/bin/ruff check analysis app tests
+
+clean:
+	rm -rf build dist *.egg-info .pytest_cache .ruff_cache .hypothesis $(STAMP)
+	find analysis app tests -name __pycache__ -type d -prune -exec rm -rf {} +
+
+distclean: clean
+	rm -rf $(VENV)

@@ -1,0 +1,200 @@
+"""Impedance display: Adams, Moreyra & Hannaford, eq. (2), (4), (7)-(12).
+
+The discrete device admittance (eq. 2) is the continuous chain admittance at the Tustin
+image ``s = j (2/T) tan(theta)``, ``theta = w T / 2``, with the actuator column multiplied
+by the hold factor ``h = cos(theta) e^{-j theta}``.  The coupling is
+``Z_c = b_c + k_c T z/(z-1)`` (eq. 4), and unconditional stability of the interface (eq. 7)
+requires ``Re(1/Z_c) >= bound`` with the bound of eq. (9)::
+
+    bound = (|Y12 Y21| + Re(Y12 Y21)) / (2 Re Y11) - Re Y22.
+
+Cancellation-free form
+----------------------
+With ``y = y12 = y21`` (reciprocal chain), ``a = Re(y e^{-j theta/2})``,
+``|p| + Re p = 2 cos(theta) a^2`` and the bound is ``-cos(theta) det H / Re y11``, where
+``H`` is the Hermitian part of ``diag(1, e^{-j theta/2}) y diag(1, e^{-j theta/2})``.
+Expanding with ``c2 = cos(theta/2)``, ``s2 = sin(theta/2)``::
+
+    det H = c2^2 Re X + 2 s2 c2 Im X - s2^2 (Re y11 Re y22 + (Im y)^2),
+    X = Re y11 y22 - Re y * y           (computed from minors, see chain.py).
+
+At low frequency ``X -> 0`` (the chain moves as a rigid body) and the bound is
+``~ cos(theta) sin^2(theta/2) |y|^2 / Re y11``: tiny, but every digit is kept.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import grids
+from .chain import chain_response, handle_impedance
+from .discretize import check_frequencies, held_spring_damper, spring_damper
+from .display_base import APPARENT_FREQUENCY, DisplayBase, safe_ratio
+from .results import BoundResult, StabilityResult, StiffnessChart, StiffnessDesign, TwoPort
+
+__all__ = ["ImpedanceDisplay", "coupling_impedance", "kc_upper"]
+
+_SAFETY = 1e-9  # relative back-off that keeps reported designs on the safe side
+
+
+def coupling_impedance(w, sample_time: float, kc: float, bc: float) -> np.ndarray:
+    """``Z_c = b_c + k_c T z/(z-1)`` on the unit circle (eq. 4)."""
+    return spring_damper(np.asarray(w, float), sample_time, kc, bc)
+
+
+def re_inv_coupling(w, sample_time: float, kc: float, bc: float) -> np.ndarray:
+    """``Re(1/Z_c) = (b_c + k_c T/2) / |Z_c|^2`` (eq. 9, left side), cancellation-free."""
+    th = 0.5 * np.asarray(w, float) * sample_time
+    beta = bc + 0.5 * kc * sample_time
+    gam = 0.5 * kc * sample_time / np.tan(th)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = beta / (beta * beta + gam * gam)
+    return np.where((beta == 0) & (gam == 0), np.inf, out)
+
+
+def kc_upper(bound: np.ndarray, w: np.ndarray, sample_time: float, bc: float) -> np.ndarray:
+    """Largest k_c with ``Re(1/Z_c) >= bound`` at each frequency (closed form).
+
+    ``B[(b_c + k T/2)^2 + (k T cot(theta)/2)^2] <= b_c + k T/2`` is quadratic in ``k``:
+    ``a2 k^2 + a1 k + a0 <= 0`` with ``a2 = B T^2 / (4 sin^2 theta)``,
+    ``a1 = T (B b_c - 1/2)``, ``a0 = b_c (B b_c - 1)``.  Returns ``+inf`` where the bound
+    is not positive and ``-inf`` where no ``k >= 0`` works (``B b_c > 1``).
+    """
+    T = sample_time
+    B = np.asarray(bound, float)
+    th = 0.5 * np.asarray(w, float) * T
+    sn = np.sin(th)
+    a2 = B * T * T / (4.0 * sn * sn)
+    a1 = T * (B * bc - 0.5)
+    a0 = bc * (B * bc - 1.0)
+    out = np.full(B.shape, np.inf)
+    pos = B > 0
+    if np.any(pos):
+        a2p, a1p, a0p = a2[pos], a1[pos], a0[pos]
+        disc = np.sqrt(np.maximum(a1p * a1p - 4.0 * a2p * a0p, 0.0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r_neg = (-a1p + disc) / (2.0 * a2p)
+            r_pos = -2.0 * a0p / (a1p + disc)
+        root = np.where(a1p <= 0, r_neg, r_pos)
+        root = np.where(a0p > 0, -np.inf, root)
+        root = np.where(np.isinf(B[pos]), -np.inf, root)
+        out[pos] = root
+    return np.where(np.isnan(B), -np.inf, out)
+
+
+class ImpedanceDisplay(DisplayBase):
+    """Impedance display of a device chain with a spring-damper virtual coupling."""
+
+    display = "impedance"
+
+    def modes(self) -> np.ndarray:
+        return grids.device_modes(self.device)
+
+    # -- eq. (2), (9) -------------------------------------------------------------------
+    def _compute(self, w: np.ndarray) -> tuple[BoundResult, TwoPort]:
+        """Y(z) of eq. (2) and the bound of eq. (9) from one chain sweep."""
+        th = self._theta(w)
+        c, s2, c2 = np.cos(th), np.sin(0.5 * th), np.cos(0.5 * th)
+        r = chain_response(self.device, self._s(w))
+        F = r.re_y11 * r.re_y22 + r.y12.imag ** 2
+        num = c * (s2 * s2 * F - c2 * c2 * r.x.real - 2.0 * s2 * c2 * r.x.imag)
+        bound, singular = safe_ratio(num, r.re_y11)
+        h = c * np.exp(-1j * th)
+        abs_p = (r.y12.real ** 2 + r.y12.imag ** 2) * c
+        re_p = (r.y12 * r.y12 * h).real
+        br = BoundResult(w=w, bound=bound, p11=r.y11, re_p11=r.re_y11, abs_p=abs_p, re_p=re_p, singular=singular)
+        return br, TwoPort(w=w, p11=r.y11, p12=r.y12 * h, p21=r.y12, p22=r.y22 * h)
+
+    # -- coupling (eq. 4, 9) -------------------------------------------------------------
+    def coupling(self, w, kc: float, bc: float) -> np.ndarray:
+        return coupling_impedance(w, self.device.sample_time, kc, bc)
+
+    def coupling_term(self, w, kc: float, bc: float) -> np.ndarray:
+        """``Re(1/Z_c)``, the left side of eq. (9)."""
+        return re_inv_coupling(w, self.device.sample_time, kc, bc)
+
+    # -- eq. (11), (12) -----------------------------------------------------------------
+    def impedance_range(self, w, kc: float, bc: float) -> tuple[np.ndarray, np.ndarray]:
+        """``(Z_min, Z_max)`` of eq. (11) and (12), complex arrays (N s/m).
+
+        ``Z_max`` is the handle impedance of the chain with ``h Z_c`` from the actuator to
+        ground, which is eq. (12) rewritten without its subtraction.
+        """
+        w = check_frequencies(w, self.device.sample_time)
+        return 1.0 / self.two_port(w).p11, self._zmax(w, kc, bc)
+
+    def _zmax(self, w: np.ndarray, kc: float, bc: float) -> np.ndarray:
+        term = held_spring_damper(w, self.device.sample_time, kc, bc)
+        return handle_impedance(self.device, self._s(w), term)
+
+    def k_max(self, kc: float) -> float:
+        """Low-frequency stiffness of Z_max: coupling spring in series with the chain springs."""
+        if kc <= 0:
+            return 0.0
+        return 1.0 / (1.0 / kc + self.device.static_compliance)
+
+    def b_min(self) -> float:
+        """Low-frequency damping of Z_min: the device's damping to ground (eq. 11)."""
+        return self.device.total_ground_damping
+
+    def evaluate(self, kc: float, bc: float, w=None, refine: bool = True) -> StabilityResult:
+        """Bound, Re(1/Z_c), margin, eta, Z_min, Z_max and headline numbers."""
+        w = self.frequencies() if w is None else check_frequencies(w, self.device.sample_time)
+        br = self.bound_result(w)
+        margin = self.coupling_term(w, kc, bc) - br.bound
+        eta = self.eta_from_margin(br.re_p11, margin, br.abs_p, br.re_p)
+        zmin, zmax = 1.0 / br.p11, self._zmax(w, kc, bc)
+        wa = np.array([APPARENT_FREQUENCY])
+        za = handle_impedance(self.device, self._s(wa))[0]
+        omega = abs(self._s(wa)[0])
+        return self._result(w, kc, bc, zmin, zmax, eta, self.k_max(kc), self.b_min(), za.imag / omega, za.real, refine)
+
+    # -- design ------------------------------------------------------------------------
+    def max_stiffness(self, bc: float, w=None) -> StiffnessDesign:
+        """Largest k_c satisfying eq. (9) over the band, for damping ``b_c``.
+
+        The bound is sampled on the resonance-aware grid, the per-frequency closed-form
+        limit :func:`kc_upper` is minimized, and every local minimum is refined; the
+        result is backed off by 1e-9 relative so that it is conservative.
+        """
+        if not (math.isfinite(bc) and bc >= 0):
+            from .errors import ValidationError
+
+            raise ValidationError("bc", ">= 0 and finite (N s/m)", bc)
+        w = self.frequencies() if w is None else check_frequencies(w, self.device.sample_time)
+        T = self.device.sample_time
+        before = self.bound_evaluations
+        B = self.bound(w)
+        vals = kc_upper(B, w, T, bc)
+        lo, hi = grids.band_edges(self.device)
+
+        def f(x: np.ndarray) -> np.ndarray:
+            return kc_upper(self._uncached_bound(x), x, T, bc)
+
+        rw, rv = grids.refine_minima(f, w, vals, lo, hi, candidates=8)
+        j = int(np.argmin(vals))
+        kmin, wmin = float(vals[j]), float(w[j])
+        if rv.size and rv[0] < kmin:
+            kmin, wmin = float(rv[0]), float(rw[0])
+        evals = self.bound_evaluations - before
+        if kmin == -math.inf:
+            return StiffnessDesign(bc=bc, kc=None, frequency=wmin, margin=-math.inf, evaluations=evals)
+        if kmin == math.inf:
+            return StiffnessDesign(bc=bc, kc=math.inf, frequency=math.nan, margin=math.inf, evaluations=evals)
+        kc = kmin * (1.0 - _SAFETY)
+        pts = np.concatenate([w, rw])
+        m = self.coupling_term(pts, kc, bc) - np.concatenate([B, self._compute_checked(rw)[0].bound])
+        return StiffnessDesign(bc=bc, kc=kc, frequency=wmin, margin=float(np.min(m)), evaluations=evals)
+
+    def stiffness_chart(self, bc_values, w=None) -> StiffnessChart:
+        """Largest k_c as a function of b_c (the design chart)."""
+        bcs = np.asarray(bc_values, float)
+        kcs = np.empty(bcs.size)
+        fr = np.empty(bcs.size)
+        for i, bc in enumerate(bcs):
+            d = self.max_stiffness(float(bc), w)
+            kcs[i] = np.nan if d.kc is None else d.kc
+            fr[i] = d.frequency
+        return StiffnessChart(bc=bcs, kc=kcs, frequency=fr)

@@ -1,0 +1,191 @@
+"""The ``zwidth`` command.
+
+Usage::
+
+    zwidth                        open the GUI on the bundled HBFD profile
+    zwidth PROFILE.json           open the GUI on a profile
+    zwidth gui [PROFILE.json]     the same, spelt out
+    zwidth analyze PROFILE [--json]
+                                  print the analysis summary of a profile (never imports Qt)
+
+Exit codes: 0 success, 1 bad profile (or the GUI cannot start), 2 usage error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import math
+import os
+import sys
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+__all__ = ["main"]
+
+SUBCOMMANDS = ("analyze", "gui")
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="zwidth",
+        description="Design tool for stable haptic interfaces (two-port virtual coupling design, Z-width).",
+        epilog="With no command, or with just a PROFILE.json, the GUI opens.",
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    analyze = sub.add_parser("analyze", help="print the analysis summary of a profile")
+    analyze.add_argument("profile", metavar="PROFILE", help="profile JSON file")
+    analyze.add_argument("--json", action="store_true", help="print the summary as JSON")
+    gui = sub.add_parser("gui", help="open the GUI (the default)")
+    gui.add_argument("profile", metavar="PROFILE", nargs="?", help="profile JSON file (default: HBFD)")
+    return parser
+
+
+def _default_profile() -> Path:
+    from analysis.resources import resource_path
+
+    return resource_path("profiles", "hbfd.json")
+
+
+def _error(message: str) -> int:
+    print(f"zwidth: error: {message}", file=sys.stderr)
+    return 1
+
+
+# -- analyze -------------------------------------------------------------------------------------
+
+
+def _jsonable(value: object) -> object:
+    """Plain JSON values; inf/-inf/nan become the strings "inf"/"-inf"/"nan"."""
+    import numpy as np
+
+    if isinstance(value, Mapping):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, np.ndarray):
+        return [_jsonable(v) for v in value.tolist()]
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        x = float(value)
+        if math.isnan(x):
+            return "nan"
+        if math.isinf(x):
+            return "inf" if x > 0 else "-inf"
+        return x
+    if value is None or isinstance(value, str):
+        return value
+    return str(value)
+
+
+def _format_value(value: object) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    if isinstance(value, list):
+        return "[" + ", ".join(_format_value(v) for v in value) + "]"
+    if value is None:
+        return "-"
+    return str(value)
+
+
+def _rows(value: object, prefix: str = "") -> list[tuple[str, str]]:
+    if isinstance(value, dict):
+        rows: list[tuple[str, str]] = []
+        for key, item in value.items():
+            rows += _rows(item, f"{prefix}.{key}" if prefix else key)
+        return rows
+    return [(prefix, _format_value(value))]
+
+
+def format_table(summary: Mapping) -> str:
+    """A readable two-column table of a (nested) summary dict."""
+    rows = _rows(_jsonable(summary))
+    width = max((len(key) for key, _ in rows), default=0)
+    return "\n".join(f"{key.ljust(width)}  {text}" for key, text in rows)
+
+
+def _analyze(profile_path: str | Path, as_json: bool) -> int:
+    from analysis.profiles import ProfileError, load_profile
+
+    try:
+        profile = load_profile(profile_path)
+    except ProfileError as err:
+        return _error(str(err))
+    from analysis.errors import ValidationError
+
+    try:
+        from analysis.summary import summarize
+    except ModuleNotFoundError as exc:
+        if exc.name != "analysis.summary":
+            raise
+        return _error("this build has no analysis summary (analysis/summary.py is missing)")
+
+    try:
+        summary = summarize(profile)
+    except ValidationError as err:
+        return _error(f"{profile_path}: {err}")
+    if as_json:
+        print(json.dumps(_jsonable(summary), indent=2, allow_nan=False))
+    else:
+        from analysis.summary import format_summary
+
+        print(format_summary(summary))
+    return 0
+
+
+# -- gui -----------------------------------------------------------------------------------------
+
+
+def _gui(profile_path: str | Path | None) -> int:
+    from analysis.profiles import ProfileError, load_profile
+
+    path = Path(profile_path) if profile_path is not None else _default_profile()
+    try:
+        load_profile(path)  # a bad file is reported here, with exit code 1, before Qt starts
+    except ProfileError as err:
+        return _error(str(err))
+    try:
+        main_window = importlib.import_module("app.main_window")
+    except ModuleNotFoundError as exc:
+        if exc.name != "app.main_window":
+            return _error(f"cannot start the GUI: {exc}")
+        main_window = None
+    except ImportError as exc:  # usually a missing system library for Qt
+        return _error(f"cannot start the GUI: {exc} (see packaging/system-deps.sh)")
+    run_gui = getattr(main_window, "run_gui", None)
+    if run_gui is None:  # no GUI yet: show what it would show
+        return _analyze(path, as_json=False)
+    return int(run_gui(str(path)) or 0)
+
+
+# -- entry point ---------------------------------------------------------------------------------
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command; returns the exit code (0 ok, 1 bad profile, 2 usage error)."""
+    args_list = list(sys.argv[1:] if argv is None else argv)
+    if not args_list:
+        args_list = ["gui"]
+    elif args_list[0] not in SUBCOMMANDS and args_list[0].lower().endswith(".json"):
+        args_list = ["gui", *args_list]
+    parser = _parser()
+    try:
+        args = parser.parse_args(args_list)
+    except SystemExit as exc:  # argparse: 2 for a usage error, 0 for --help
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    try:
+        if args.command == "analyze":
+            return _analyze(args.profile, args.json)
+        return _gui(args.profile)
+    except BrokenPipeError:  # e.g. `zwidth analyze x.json | head`: stop quietly
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

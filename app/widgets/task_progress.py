@@ -1,0 +1,61 @@
+"""Progress bar and Cancel button for the worker's jobs (shown in the status bar)."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Slot
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QWidget
+
+from ..compute_graph import ComputeGraph
+
+__all__ = ["TaskProgress", "TASK_TITLES"]
+
+TASK_TITLES = {"design_chart": "Computing design chart", "min_mass": "Minimizing m_c"}
+
+
+class TaskProgress(QWidget):
+    def __init__(self, graph: ComputeGraph, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self._graph = graph
+        self._name: str | None = None
+        self.label = QLabel()
+        self.bar = QProgressBar()
+        self.bar.setFixedWidth(160)
+        self.bar.setTextVisible(True)
+        self.cancel_button = QPushButton("Cancel")
+        self.cancel_button.setToolTip("Stop the running computation (the last result stays)")
+        lay = QHBoxLayout(self)
+        lay.setContentsMargins(0, 0, 0, 0)
+        lay.addWidget(self.label)
+        lay.addWidget(self.bar)
+        lay.addWidget(self.cancel_button)
+        self.cancel_button.clicked.connect(self.cancel)
+        graph.started.connect(self._on_started)
+        graph.progress.connect(self._on_progress)
+        graph.ready.connect(self._on_end)
+        graph.failed.connect(lambda name, _msg: self._on_end(name))
+        graph.cancelled.connect(self._on_end)
+        self.hide()
+
+    @Slot(str)
+    def _on_started(self, name: str) -> None:
+        self._name = name
+        self.label.setText(TASK_TITLES.get(name, name) + "…")
+        self.bar.setRange(0, 0)  # busy until the first report
+        self.show()
+
+    @Slot(str, int, int)
+    def _on_progress(self, name: str, done: int, total: int) -> None:
+        if name == self._name:
+            self.bar.setRange(0, total)
+            self.bar.setValue(done)
+
+    @Slot(str)
+    def _on_end(self, name: str) -> None:
+        if name == self._name:
+            self._name = None
+            self.hide()
+
+    @Slot()
+    def cancel(self) -> None:
+        if self._name is not None:
+            self._graph.cancel(self._name)

@@ -1,0 +1,140 @@
+"""Background work: one :class:`TaskRunner` runs named jobs on its own thread pool.
+
+A job is ``fn(progress, cancelled) -> result``; ``progress(done, total)`` reports, ``cancelled()``
+says whether to stop early.  Submitting a job under a name supersedes the running job of that
+name: its generation number becomes stale and its result is dropped when it arrives.
+"""
+
+from __future__ import annotations
+
+import threading
+import traceback
+from collections.abc import Callable
+from typing import Any
+
+from PySide6.QtCore import QObject, QRunnable, QThreadPool, Signal, Slot
+
+__all__ = ["TaskRunner", "Job"]
+
+Job = Callable[[Callable[[int, int], None], Callable[[], bool]], Any]
+
+
+class _Relay(QObject):
+    """Carries a job's reports from the worker thread to the GUI thread (queued signals)."""
+
+    progress = Signal(str, int, int, int)  # name, generation, done, total
+    done = Signal(str, int, object)
+    error = Signal(str, int, str)
+
+
+class _Runnable(QRunnable):
+    def __init__(self, name: str, generation: int, fn: Job, relay: _Relay, stop: threading.Event) -> None:
+        super().__init__()
+        self.setAutoDelete(False)
+        self._name, self._gen, self._fn, self._relay, self._stop = name, generation, fn, relay, stop
+
+    def run(self) -> None:
+        name, gen = self._name, self._gen
+
+        def progress(done: int, total: int) -> None:
+            if not self._stop.is_set():
+                self._relay.progress.emit(name, gen, int(done), int(total))
+
+        try:
+            result = self._fn(progress, self._stop.is_set)
+        except Exception as exc:  # noqa: BLE001 - reported to the GUI, never lost
+            traceback.print_exc()
+            self._relay.error.emit(name, gen, f"{type(exc).__name__}: {exc}")
+            return
+        self._relay.done.emit(name, gen, result)
+
+
+class TaskRunner(QObject):
+    """Runs named jobs; only the newest job of each name reports."""
+
+    started = Signal(str)
+    progress = Signal(str, int, int)
+    finished = Signal(str, object)
+    failed = Signal(str, str)
+    cancelled = Signal(str)
+
+    def __init__(self, parent: QObject | None = None, max_threads: int = 2) -> None:
+        super().__init__(parent)
+        self._pool = QThreadPool(self)
+        self._pool.setMaxThreadCount(max_threads)
+        self._relay = _Relay(self)
+        self._relay.progress.connect(self._on_progress)
+        self._relay.done.connect(self._on_done)
+        self._relay.error.connect(self._on_error)
+        self._generation: dict[str, int] = {}
+        self._stops: dict[str, threading.Event] = {}
+        self._jobs: dict[tuple[str, int], _Runnable] = {}
+        self.dropped = 0  # stale results thrown away (for tests)
+
+    def submit(self, name: str, fn: Job) -> int:
+        """Start ``fn`` under ``name``, superseding a running job of that name; returns its generation."""
+        old = self._stops.get(name)
+        if old is not None:
+            old.set()
+        gen = self._generation.get(name, 0) + 1
+        self._generation[name] = gen
+        stop = threading.Event()
+        self._stops[name] = stop
+        job = _Runnable(name, gen, fn, self._relay, stop)
+        self._jobs[(name, gen)] = job
+        self._pool.start(job)
+        self.started.emit(name)
+        return gen
+
+    def cancel(self, name: str) -> None:
+        """Stop the job ``name`` (its result, if any, is dropped)."""
+        stop = self._stops.pop(name, None)
+        if stop is not None:
+            stop.set()
+            self._generation[name] = self._generation.get(name, 0) + 1
+            self.cancelled.emit(name)
+
+    def cancel_all(self) -> None:
+        for name in list(self._stops):
+            self.cancel(name)
+
+    def is_running(self, name: str | None = None) -> bool:
+        if name is None:
+            return bool(self._stops)
+        return name in self._stops
+
+    def running(self) -> list[str]:
+        return list(self._stops)
+
+    def wait(self, msecs: int = 10000) -> bool:
+        """Block until the pool is idle (tests and shutdown only)."""
+        return self._pool.waitForDone(msecs)
+
+    def shutdown(self) -> None:
+        self.cancel_all()
+        self._pool.waitForDone(10000)
+
+    def _current(self, name: str, gen: int) -> bool:
+        return gen == self._generation.get(name) and name in self._stops
+
+    @Slot(str, int, int, int)
+    def _on_progress(self, name: str, gen: int, done: int, total: int) -> None:
+        if self._current(name, gen):
+            self.progress.emit(name, done, total)
+
+    @Slot(str, int, object)
+    def _on_done(self, name: str, gen: int, result: object) -> None:
+        self._jobs.pop((name, gen), None)
+        if not self._current(name, gen):
+            self.dropped += 1
+            return
+        self._stops.pop(name, None)
+        self.finished.emit(name, result)
+
+    @Slot(str, int, str)
+    def _on_error(self, name: str, gen: int, message: str) -> None:
+        self._jobs.pop((name, gen), None)
+        if not self._current(name, gen):
+            return
+        self._stops.pop(name, None)
+        self.failed.emit(name, message)

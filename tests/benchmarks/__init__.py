@@ -1,0 +1,1 @@
+"""Benchmarks (never collected as tests): run with ``zwidth bench [--quick]``."""
