@@ -20,8 +20,9 @@ from .device import Device
 __all__ = ["warp", "log_grid", "resonance_grid", "refine_minima", "device_modes", "band_edges"]
 
 # relative offsets of the points clustered around each resonance
-_OFFSETS = np.concatenate([[0.0], np.geomspace(1e-7, 0.3, 24)])
-_OFFSETS = np.concatenate([-_OFFSETS[:0:-1], _OFFSETS])
+# (the exact mode is left out: on a lossless chain it is a pole, where responses are infinite)
+_OFFSETS = np.geomspace(1e-7, 0.3, 24)
+_OFFSETS = np.concatenate([-_OFFSETS[::-1], _OFFSETS])
 
 
 def warp(omega_continuous: np.ndarray, sample_time: float) -> np.ndarray:
@@ -105,8 +106,10 @@ def refine_minima(
     vv = np.where(np.isnan(v), np.inf, v)
     left = np.concatenate([[np.inf], vv[:-1]])
     right = np.concatenate([vv[1:], [np.inf]])
-    is_min = (vv <= left) & (vv <= right)
+    is_min = (vv <= left) & (vv <= right) & np.isfinite(vv)  # an infinite plateau cannot be refined
     idx = np.flatnonzero(is_min)
+    if idx.size == 0:
+        return w[:0], v[:0]
     idx = idx[np.argsort(vv[idx])][:candidates]
     a = np.where(idx > 0, w[np.maximum(idx - 1, 0)], lo)
     b = np.where(idx < nw - 1, w[np.minimum(idx + 1, nw - 1)], hi)
@@ -132,11 +135,13 @@ def refine_minima(
         j = np.argmin(sv, axis=1)
         best_w = sw[rows, j]
         best_v = sv[rows, j]
-        # new bracket: the nearest *distinct* neighbours of the best point (an interior point
-        # may coincide with best_w; taking index neighbours would then collapse the bracket
-        # onto best_w and lose the side holding the minimum)
-        below = np.where(sw < best_w[:, None], sw, sw[:, :1]).max(axis=1)
-        above = np.where(sw > best_w[:, None], sw, sw[:, -1:]).min(axis=1)
+        # new bracket: the nearest *distinct* neighbours of the best point.  An interior point
+        # may coincide with the previous best (exactly, or to an ulp after exp/log); taking
+        # index neighbours would then collapse the bracket onto best_w and lose the side
+        # holding the minimum.  Points closer than 1e-3 of the bracket width count as equal.
+        eps = (1e-3 * (b - a))[:, None]
+        below = np.where(sw < best_w[:, None] - eps, sw, sw[:, :1]).max(axis=1)
+        above = np.where(sw > best_w[:, None] + eps, sw, sw[:, -1:]).min(axis=1)
         a = np.maximum(below, lo)
         b = np.minimum(above, hi)
     order = np.argsort(best_v)

@@ -66,22 +66,22 @@ def kc_upper(bound: np.ndarray, w: np.ndarray, sample_time: float, bc: float) ->
     B = np.asarray(bound, float)
     th = 0.5 * np.asarray(w, float) * T
     sn = np.sin(th)
-    a2 = B * T * T / (4.0 * sn * sn)
-    a1 = T * (B * bc - 0.5)
-    a0 = bc * (B * bc - 1.0)
+    with np.errstate(invalid="ignore", over="ignore"):
+        a2 = B * T * T / (4.0 * sn * sn)
+        a1 = T * (B * bc - 0.5)
+        a0 = bc * (B * bc - 1.0)
     out = np.full(B.shape, np.inf)
-    pos = B > 0
+    out[(B == np.inf) | np.isnan(B)] = -np.inf  # singular (lossless) points: nothing is safe
+    pos = (B > 0) & np.isfinite(B)
     if np.any(pos):
         a2p, a1p, a0p = a2[pos], a1[pos], a0[pos]
         disc = np.sqrt(np.maximum(a1p * a1p - 4.0 * a2p * a0p, 0.0))
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             r_neg = (-a1p + disc) / (2.0 * a2p)
             r_pos = -2.0 * a0p / (a1p + disc)
         root = np.where(a1p <= 0, r_neg, r_pos)
-        root = np.where(a0p > 0, -np.inf, root)
-        root = np.where(np.isinf(B[pos]), -np.inf, root)
-        out[pos] = root
-    return np.where(np.isnan(B), -np.inf, out)
+        out[pos] = np.where(a0p > 0, -np.inf, root)
+    return out
 
 
 class ImpedanceDisplay(DisplayBase):
@@ -145,7 +145,9 @@ class ImpedanceDisplay(DisplayBase):
         br = self.bound_result(w)
         margin = self.coupling_term(w, kc, bc) - br.bound
         eta = self.eta_from_margin(br.re_p11, margin, br.abs_p, br.re_p)
-        zmin, zmax = 1.0 / br.p11, self._zmax(w, kc, bc)
+        with np.errstate(divide="ignore", invalid="ignore"):  # exact poles of a lossless chain
+            zmin = 1.0 / br.p11
+        zmax = self._zmax(w, kc, bc)
         wa = np.array([APPARENT_FREQUENCY])
         za = handle_impedance(self.device, self._s(wa))[0]
         omega = abs(self._s(wa)[0])

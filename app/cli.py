@@ -24,7 +24,7 @@ from pathlib import Path
 
 __all__ = ["main"]
 
-SUBCOMMANDS = ("analyze", "gui")
+SUBCOMMANDS = ("analyze", "gui", "bench")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -37,6 +37,10 @@ def _parser() -> argparse.ArgumentParser:
     analyze = sub.add_parser("analyze", help="print the analysis summary of a profile")
     analyze.add_argument("profile", metavar="PROFILE", help="profile JSON file")
     analyze.add_argument("--json", action="store_true", help="print the summary as JSON")
+    bench = sub.add_parser("bench", help="run the benchmarks and print their table")
+    bench.add_argument("--quick", action="store_true", help="short run (under a minute); writes nothing")
+    bench.add_argument("--only", metavar="TEXT", help="only benchmark modules whose name contains TEXT")
+    bench.add_argument("--write", action="store_true", help="write BENCHMARKS.md even with --quick")
     gui = sub.add_parser("gui", help="open the GUI (the default)")
     gui.add_argument("profile", metavar="PROFILE", nargs="?", help="profile JSON file (default: HBFD)")
     return parser
@@ -180,6 +184,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.command == "analyze":
             return _analyze(args.profile, args.json)
+        if args.command == "bench":
+            from app.bench import run_bench
+
+            return run_bench(quick=args.quick, only=args.only, write=True if args.write else None)
         return _gui(args.profile)
     except BrokenPipeError:  # e.g. `zwidth analyze x.json | head`: stop quietly
         devnull = os.open(os.devnull, os.O_WRONLY)

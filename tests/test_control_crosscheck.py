@@ -1,11 +1,20 @@
 """Y(z) of eq. (2) against python-control (state space + Tustin c2d), and G(z) of eq. (14)
-against a dense n x n solve per frequency (the formulas of eq. 2, 14, 27, 30 literally)."""
+against a dense n x n solve per frequency (the formulas of eq. 2, 14, 27, 30 literally).
+
+python-control's route (c2d of a 2n-state model, then C (zI - A)^-1 B) is accurate only
+*normwise*: for stiff or long chains the small entries of Y (transmission across the chain)
+come out with relative errors up to 1e+11, while the production code matches the 50-digit
+reference entrywise to ~1e-14 (both shown below).  So each entry is compared to 1e-8
+relative to max(|entry|, 0.05 max|Y|); the entrywise check is done against mpmath.
+"""
 
 from __future__ import annotations
 
 import control
 import numpy as np
 import pytest
+
+import reference as ref
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay
 from strategies import seeded_device
@@ -29,9 +38,15 @@ def chain_ss(dev):
     return control.ss(A, Bin, C, np.zeros((2, 2)))
 
 
-def entry_check(ours, theirs, tol):
-    err = np.abs(ours - theirs) / np.maximum(np.abs(theirs), TINY)
+def entry_check(ours, theirs, tol, floor=0.0):
+    scale = np.maximum(np.abs(theirs), max(floor * float(np.max(np.abs(theirs))), TINY))
+    err = np.abs(ours - theirs) / scale
     assert np.all(err < tol), float(np.max(err))
+
+
+def mp_y(dev, w):
+    r = ref.device_y(dev, w)
+    return np.array([[complex(r[0]), complex(r[1])], [complex(r[2]), complex(r[3])]])
 
 
 def _devices():
@@ -53,7 +68,26 @@ def test_device_two_port_matches_python_control(dev):
         hold = (z + 1) / (2 * z)
         Y[:, 1] *= hold
         ours = np.array([[tp.p11[i], tp.p12[i]], [tp.p21[i], tp.p22[i]]])
-        entry_check(ours, Y, 1e-8)
+        entry_check(ours, Y, 1e-8, floor=0.05)
+        if i % 3 == 0:  # entrywise against 50 digits
+            entry_check(ours, mp_y(dev, wi), 1e-12)
+
+
+def test_python_control_small_entries_are_the_inaccurate_route():
+    """Why the floor above: on a stiff 12-mass chain python-control misses a small entry by
+    more than 1e-6 relative while ours agrees with mpmath to 1e-12."""
+    worst_control = 0.0
+    for dev in _devices()[:1]:
+        sysd = control.c2d(chain_ss(dev), dev.sample_time, method="tustin")
+        for wi in np.geomspace(1e-3, 0.95, 9) * dev.nyquist:
+            z = np.exp(1j * wi * dev.sample_time)
+            Y = np.asarray(sysd(z), dtype=complex)
+            Y[:, 1] *= (z + 1) / (2 * z)
+            R = mp_y(dev, wi)
+            tp = ImpedanceDisplay(dev).two_port(np.array([wi]))
+            entry_check(np.array([[tp.p11[0], tp.p12[0]], [tp.p21[0], tp.p22[0]]]), R, 1e-12)
+            worst_control = max(worst_control, float(np.max(np.abs(Y - R) / np.abs(R))))
+    assert worst_control > 1e-6
 
 
 def test_hbfd_two_port_matches_python_control(hbfd):
@@ -65,10 +99,10 @@ def test_hbfd_two_port_matches_python_control(hbfd):
     resp = control.frequency_response(sysd, w)
     Y = np.asarray(resp.complex, dtype=complex)  # (outputs, inputs, N)
     hold = (z + 1) / (2 * z)
-    entry_check(tp.p11, Y[0, 0], 1e-8)
-    entry_check(tp.p21, Y[1, 0], 1e-8)
-    entry_check(tp.p12, Y[0, 1] * hold, 1e-8)
-    entry_check(tp.p22, Y[1, 1] * hold, 1e-8)
+    for i in range(w.size):
+        ours = np.array([[tp.p11[i], tp.p12[i]], [tp.p21[i], tp.p22[i]]])
+        entry_check(ours, np.array([[Y[0, 0, i], Y[0, 1, i] * hold[i]], [Y[1, 0, i], Y[1, 1, i] * hold[i]]]),
+                    1e-8, floor=0.05)
 
 
 def dense_g(dev, w, kp, kd):

@@ -1,0 +1,92 @@
+"""``zwidth bench``: run the benchmarks in ``tests/benchmarks/`` and print their table.
+
+Every module ``tests/benchmarks/bench_*.py`` exposes ``run(quick: bool) -> list[dict]``.
+Each row has a ``name`` and timing columns (``median_ms``, ``p95_ms``), and may carry a
+``target_ms`` or ``target_ratio`` and error columns.  Timing limits are not tests: the
+command prints the table and fails on nothing but a crash.  The full run (without
+``--quick``) also writes the table into ``BENCHMARKS.md`` between markers, with the date
+and the machine.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import importlib
+import math
+import sys
+import time
+from pathlib import Path
+
+__all__ = ["run_bench", "format_rows"]
+
+BEGIN = "<!-- bench:begin -->"
+END = "<!-- bench:end -->"
+
+
+def _repo_root() -> Path | None:
+    here = Path(__file__).resolve().parent.parent
+    return here if (here / "tests" / "benchmarks").is_dir() else None
+
+
+def _fmt(v: object) -> str:
+    if isinstance(v, float):
+        if math.isinf(v) or math.isnan(v):
+            return str(v)
+        return f"{v:.4g}"
+    return str(v)
+
+
+def format_rows(module: str, rows: list[dict]) -> str:
+    """A Markdown table of one benchmark module's rows."""
+    cols: list[str] = []
+    for r in rows:
+        for k in r:
+            if k != "name" and k not in cols:
+                cols.append(k)
+    lines = [f"### {module}", "", "| benchmark | " + " | ".join(cols) + " |",
+             "|---|" + "---|" * len(cols)]
+    for r in rows:
+        lines.append(f"| {r.get('name', '')} | " + " | ".join(_fmt(r.get(c, "")) for c in cols) + " |")
+    return "\n".join(lines)
+
+
+def run_bench(quick: bool = False, only: str | None = None, write: bool | None = None) -> int:
+    root = _repo_root()
+    if root is None:
+        print("zwidth bench: the benchmarks live in tests/benchmarks of a source checkout; "
+              "run it from a clone (pip install -e .)", file=sys.stderr)
+        return 1
+    if str(root) not in sys.path:
+        sys.path.insert(0, str(root))
+    names = sorted(p.stem for p in (root / "tests" / "benchmarks").glob("bench_*.py"))
+    if only:
+        names = [n for n in names if only in n]
+    sections = []
+    t0 = time.perf_counter()
+    for name in names:
+        mod = importlib.import_module(f"tests.benchmarks.{name}")
+        start = time.perf_counter()
+        rows = mod.run(quick=quick)
+        table = format_rows(name, rows)
+        print(table)
+        print(f"({name}: {time.perf_counter() - start:.1f} s)\n", flush=True)
+        sections.append(table)
+    total = time.perf_counter() - t0
+    print(f"all benchmarks: {total:.1f} s ({'quick' if quick else 'full'})")
+    if write if write is not None else not quick:
+        from tests.benchmarks.common import machine
+
+        stamp = _dt.datetime.now().strftime("%Y-%m-%d %H:%M")
+        body = f"Run on {stamp} on {machine()} ({'quick' if quick else 'full'} run, {total:.0f} s).\n\n"
+        body += "\n\n".join(sections)
+        path = root / "BENCHMARKS.md"
+        text = path.read_text() if path.exists() else f"# Benchmarks\n\n{BEGIN}\n{END}\n"
+        if BEGIN in text and END in text:
+            head, rest = text.split(BEGIN, 1)
+            tail = rest.split(END, 1)[1]
+            text = f"{head}{BEGIN}\n{body}\n{END}{tail}"
+        else:
+            text += f"\n{BEGIN}\n{body}\n{END}\n"
+        path.write_text(text)
+        print(f"wrote {path}")
+    return 0

@@ -1,0 +1,217 @@
+"""What every plot view shares: the plot widget, units, crosshair readout, warnings, export data."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import QPointF, Qt, Signal, Slot
+from PySide6.QtGui import QAction, QColor, QFont
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
+
+__all__ = ["PlotView", "Series", "clean_xy", "fmt", "PALETTE"]
+
+PALETTE = {
+    "light": {"bg": "#ffffff", "fg": "#222222", "grid": 0.25, "a": "#1f5fbf", "b": "#d9480f", "c": "#2b8a3e",
+              "bad": (220, 40, 40, 45), "fill": (31, 95, 191, 45), "mark": "#c92a2a", "muted": "#868e96"},
+    "dark": {"bg": "#1e1f22", "fg": "#dddddd", "grid": 0.3, "a": "#74a7ff", "b": "#ff922b", "c": "#69db7c",
+             "bad": (255, 80, 80, 60), "fill": (116, 167, 255, 55), "mark": "#ff6b6b", "muted": "#adb5bd"},
+}
+
+
+@dataclass(frozen=True)
+class Series:
+    """One plotted curve as exported to CSV: names with units, and the data as drawn."""
+
+    name: str
+    x_label: str
+    y_label: str
+    x: np.ndarray
+    y: np.ndarray
+
+
+def fmt(x: float, digits: int = 4) -> str:
+    """A number for labels: ``1.171e+05`` -> ``1.171e5``; inf and NaN spelt out."""
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "–"
+    if math.isinf(x):
+        return "∞" if x > 0 else "−∞"
+    text = f"{x:.{digits}g}"
+    if "e" in text:
+        mant, exp = text.split("e")
+        text = f"{mant}×10^{int(exp)}"
+        text = text.replace("^", "<sup>", 1) + "</sup>"
+    return text.replace("-", "−")
+
+
+def plain(x: float, digits: int = 4) -> str:
+    if x is None or math.isnan(x):
+        return "–"
+    if math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    return f"{x:.{digits}g}"
+
+
+def clean_xy(x: np.ndarray, y: np.ndarray, log_x: bool = False, log_y: bool = False
+             ) -> tuple[np.ndarray, np.ndarray, int]:
+    """Drop points that cannot be drawn (non-finite, or <= 0 on a log axis); returns how many."""
+    x = np.asarray(x, float)
+    y = np.asarray(y, float)
+    ok = np.isfinite(x) & np.isfinite(y)
+    if log_x:
+        ok &= x > 0
+    if log_y:
+        ok &= y > 0
+    return x[ok], y[ok], int(ok.size - np.count_nonzero(ok))
+
+
+class PlotView(QWidget):
+    """A titled pyqtgraph plot with a crosshair readout and a warning line.
+
+    Subclasses add their items in ``__init__`` and implement :meth:`export_series`.
+    """
+
+    exportRequested = Signal(str)  # "png", "svg" or "csv"
+
+    x_name = "x"
+    x_unit = ""
+    y_name = "y"
+    y_unit = ""
+
+    def __init__(self, title: str, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.title = title
+        self.revision = 0  # bumps on every data update (tests, benchmarks)
+        self._dark = False
+        self._log_x = self._log_y = False
+        self.header = QLabel(f"<b>{title}</b>")
+        self.cursor_label = QLabel("")
+        self.cursor_label.setAlignment(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
+        self.cursor_label.setMinimumWidth(260)
+        self.cursor_label.setStyleSheet("color: palette(mid); font-family: monospace;")
+        self.warning = QLabel("")
+        self.warning.setWordWrap(True)
+        self.warning.setStyleSheet("color: #c77c02;")
+        self.warning.hide()
+        self.plot_widget = pg.PlotWidget()
+        self.plot_widget.setMinimumSize(300, 200)
+        self.plot: pg.PlotItem = self.plot_widget.getPlotItem()
+        self.plot.showGrid(x=True, y=True, alpha=0.25)
+        self.plot.setMenuEnabled(True)
+        self.plot.hideButtons()
+        for ax in ("left", "bottom"):
+            axis = self.plot.getAxis(ax)
+            axis.enableAutoSIPrefix(False)
+            axis.setTickFont(QFont(self.font().family(), 9))
+        self.legend = self.plot.addLegend(offset=(-10, 10), labelTextSize="9pt")
+
+        head = QHBoxLayout()
+        head.setContentsMargins(4, 0, 4, 0)
+        head.addWidget(self.header)
+        head.addStretch(1)
+        head.addWidget(self.cursor_label)
+        lay = QVBoxLayout(self)
+        lay.setContentsMargins(0, 0, 0, 0)
+        lay.setSpacing(2)
+        lay.addLayout(head)
+        lay.addWidget(self.plot_widget, 1)
+        lay.addWidget(self.warning)
+
+        pen = pg.mkPen((128, 128, 128, 150), width=1, style=Qt.PenStyle.DashLine)
+        self._vline = pg.InfiniteLine(angle=90, movable=False, pen=pen)
+        self._hline = pg.InfiniteLine(angle=0, movable=False, pen=pen)
+        for line in (self._vline, self._hline):
+            line.setZValue(50)
+            line.hide()
+            self.plot.addItem(line, ignoreBounds=True)
+        self.plot_widget.scene().sigMouseMoved.connect(self._on_mouse_moved)
+
+        menu = self.plot.getViewBox().menu
+        menu.addSeparator()
+        for fmt_name, text in (("png", "Export PNG…"), ("svg", "Export SVG…"), ("csv", "Export CSV…")):
+            act = QAction(text, self)
+            act.triggered.connect(lambda _=False, f=fmt_name: self.exportRequested.emit(f))
+            menu.addAction(act)
+        self.export_actions = menu.actions()[-3:]
+
+    # -- helpers for subclasses -----------------------------------------------------------------
+    def set_axis_labels(self, x_name: str, x_unit: str, y_name: str, y_unit: str) -> None:
+        self.x_name, self.x_unit, self.y_name, self.y_unit = x_name, x_unit, y_name, y_unit
+        style = {"font-size": "10pt"}
+        self.plot.setLabel("bottom", f"{x_name}  [{x_unit}]", **style)
+        self.plot.setLabel("left", f"{y_name}  [{y_unit}]", **style)
+
+    def curve(self, name: str | None, color: str, width: float = 2.0, style: Qt.PenStyle = Qt.PenStyle.SolidLine
+              ) -> pg.PlotDataItem:
+        item = self.plot.plot([], [], name=name, pen=pg.mkPen(color, width=width, style=style))
+        item.setClipToView(True)
+        item.setDownsampling(auto=True, method="peak")
+        return item
+
+    def set_warning(self, messages: list[str]) -> None:
+        text = "  ".join(f"⚠ {m}" for m in messages if m)
+        self.warning.setText(text)
+        self.warning.setVisible(bool(text))
+
+    def bump(self) -> None:
+        self.revision += 1
+
+    def set_log(self, x: bool, y: bool) -> None:
+        if (x, y) != (self._log_x, self._log_y):
+            self._log_x, self._log_y = x, y
+            self.plot.setLogMode(x=x, y=y)
+
+    def is_log(self) -> tuple[bool, bool]:
+        return self._log_x, self._log_y
+
+    def data_point(self, view_point: QPointF) -> tuple[float, float]:
+        lx, ly = self.is_log()
+        x, y = view_point.x(), view_point.y()
+        return (10.0 ** x if lx else x), (10.0 ** y if ly else y)
+
+    # -- crosshair ----------------------------------------------------------------------------------
+    @Slot(object)
+    def _on_mouse_moved(self, pos: QPointF) -> None:
+        vb = self.plot.getViewBox()
+        if not vb.sceneBoundingRect().contains(pos):
+            self._vline.hide()
+            self._hline.hide()
+            self.cursor_label.setText("")
+            return
+        p = vb.mapSceneToView(pos)
+        self._vline.setPos(p.x())
+        self._hline.setPos(p.y())
+        self._vline.show()
+        self._hline.show()
+        x, y = self.data_point(p)
+        self.cursor_label.setText(self.cursor_text(x, y))
+
+    def cursor_text(self, x: float, y: float) -> str:
+        return f"{self.x_name} = {plain(x)} {self.x_unit},  {self.y_name} = {plain(y)} {self.y_unit}"
+
+    # -- theme ----------------------------------------------------------------------------------------
+    def apply_theme(self, dark: bool) -> None:
+        self._dark = dark
+        pal = PALETTE["dark" if dark else "light"]
+        self.plot_widget.setBackground(pal["bg"])
+        for ax in ("left", "bottom", "top", "right"):
+            axis = self.plot.getAxis(ax)
+            axis.setPen(pg.mkPen(pal["fg"]))
+            axis.setTextPen(pg.mkPen(pal["fg"]))
+        self.legend.setLabelTextColor(QColor(pal["fg"]))
+        self.legend.setBrush(pg.mkBrush(QColor(pal["bg"]).red(), QColor(pal["bg"]).green(),
+                                        QColor(pal["bg"]).blue(), 210))
+        self.legend.setPen(pg.mkPen(pal["muted"]))
+        self.restyle(pal)
+
+    def palette_colors(self) -> dict:
+        return PALETTE["dark" if self._dark else "light"]
+
+    def restyle(self, pal: dict) -> None:
+        """Recolour the subclass's items."""
+
+    # -- export -----------------------------------------------------------------------------------------
+    def export_series(self) -> list[Series]:
+        raise NotImplementedError
