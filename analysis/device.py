@@ -69,7 +69,7 @@ class Device:
         ``n - 1`` element stiffnesses (N/m) and dampings (N s/m); element ``i`` joins mass
         ``i`` and ``i + 1``.
     ground_dampings:
-        ``n`` dampers from each mass to ground (N s/m); default zero except none.
+        ``n`` dampers from each mass to ground (N s/m); default all zero.
     sensor_element:
         Element carrying the force gauge (0 = next to the handle).
     sample_time:

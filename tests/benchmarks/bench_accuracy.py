@@ -1,0 +1,207 @@
+"""Run time against error for the design figures and the bound (issue: fast and accurate).
+
+For the HBFD with damping ratio 0.1, 1e-2, 1e-3 and 1e-4 in every flexible element:
+
+* largest k_c (b_c = 50 N s/m): plain log grids of several sizes (minimum of the closed-form
+  per-frequency limit on the grid, as one would do by hand), the same grids with zwidth's
+  refinement, and zwidth's resonance-aware design (``max_stiffness``); the reference is a
+  dense 300 000-point grid with scipy's bounded Brent refinement of its best minima;
+* smallest feasible b_c for m_c = 31 kg (admittance display, k_p = 50 kN/m, k_d = 100 N s/m),
+  the same way;
+* the bound itself: zwidth, the literal formula in double precision, python-control and a
+  plain numpy n x n solve per frequency, against 50-digit mpmath.
+
+Writes ``docs/bench_kc_error.png`` and ``docs/bench_bc_error.png`` (error against time).
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from analysis import AdmittanceDisplay, ImpedanceDisplay
+from analysis import grids
+from analysis.impedance import kc_upper
+
+from .common import hbfd, timeit
+
+RATIOS = (0.1, 1e-2, 1e-3, 1e-4)
+GRIDS = (100, 300, 1000, 3000, 10000)
+BC = 50.0  # N s/m: with 100, no k_c is feasible for damping ratios <= 1e-3 (B b_c > 1 at the peaks)
+
+
+def _dense_min(f, lo, hi, points):
+    w = np.geomspace(lo, hi, points)
+    v = f(w)
+    order = np.argsort(v)[:6]
+    best = float(v[order[0]])
+    for j in order:
+        a, b = w[max(j - 1, 0)], w[min(j + 1, w.size - 1)]
+        r = minimize_scalar(lambda lx: float(f(np.array([np.exp(lx)]))[0]), bounds=(np.log(a), np.log(b)),
+                            method="bounded", options={"xatol": 1e-12})
+        best = min(best, float(r.fun))
+    return best
+
+
+def _kc_rows(quick: bool) -> tuple[list[dict], dict]:
+    rows, series = [], {}
+    dense_points = 60_000 if quick else 300_000
+    for z in RATIOS:
+        dev = hbfd(ratio=z)
+        imp = ImpedanceDisplay(dev)
+        T = dev.sample_time
+        lo, hi = grids.band_edges(dev)
+
+        def f(x, imp=imp, T=T):
+            return kc_upper(imp._bound_parts(x).bound, x, T, BC)
+
+        ref = _dense_min(f, lo, hi, dense_points)
+        pts = []
+        for n in GRIDS[:3] if quick else GRIDS:
+            w = np.geomspace(lo, hi, n)
+            t = timeit(lambda w=w: float(np.min(f(w))), repeat=3 if quick else 10)
+            val = float(np.min(f(w)))
+            pts.append(("log grid", n, t["median_ms"], abs(val - ref) / ref))
+            t2 = timeit(lambda w=w: grids.refine_minima(f, w, f(w), lo, hi, candidates=8), repeat=3 if quick else 10)
+            rw, rv = grids.refine_minima(f, w, f(w), lo, hi, candidates=8)
+            val2 = min(float(np.min(f(w))), float(rv[0]) if rv.size else np.inf)
+            pts.append(("log grid + refinement", n, t2["median_ms"], abs(val2 - ref) / ref))
+        t3 = timeit(lambda dev=dev: ImpedanceDisplay(dev).max_stiffness(BC), repeat=3 if quick else 20)
+        d = ImpedanceDisplay(dev).max_stiffness(BC)
+        pts.append(("zwidth resonance grid", d.evaluations, t3["median_ms"], abs(d.kc - ref) / ref))
+        series[z] = pts
+        for name, n, ms, err in pts:
+            rows.append({"name": f"largest k_c, zeta={z:g}, {name}", "points": n, "median_ms": ms,
+                         "rel_err": err, "unsafe": bool(name != "zwidth resonance grid" and err > 1e-9)})
+        rows.append({"name": f"largest k_c, zeta={z:g}, dense reference", "points": dense_points,
+                     "kc": ref})
+    return rows, series
+
+
+def _bc_rows(quick: bool) -> tuple[list[dict], dict]:
+    rows, series = [], {}
+    dense_points = 60_000 if quick else 300_000
+    mc = 31.0
+    for z in RATIOS:
+        dev = hbfd(ratio=z)
+        adm = AdmittanceDisplay(dev, 50e3, 100.0)
+        lo, hi = grids.band_edges(dev)
+
+        def upper(x, adm=adm):
+            return adm._limits(adm._bound_parts(x).bound, x, mc)[1]
+
+        ref_u = _dense_min(upper, lo, hi, dense_points)
+        ref = 1.0 / ref_u
+        pts = []
+        for n in GRIDS[:3] if quick else GRIDS:
+            w = np.geomspace(lo, hi, n)
+            t = timeit(lambda w=w: float(np.min(upper(w))), repeat=3 if quick else 10)
+            val = 1.0 / float(np.min(upper(w)))
+            pts.append(("log grid", n, t["median_ms"], abs(val - ref) / ref))
+        t3 = timeit(lambda dev=dev: AdmittanceDisplay(dev, 50e3, 100.0).feasible_damping(mc), repeat=3 if quick else 10)
+        d = AdmittanceDisplay(dev, 50e3, 100.0).feasible_damping(mc)
+        err = abs(d.low - ref) / ref if d.low is not None else float("nan")
+        pts.append(("zwidth resonance grid", len(adm.frequencies()), t3["median_ms"], err))
+        series[z] = pts
+        for name, n, ms, e in pts:
+            rows.append({"name": f"smallest b_c at m_c=31, zeta={z:g}, {name}", "points": n,
+                         "median_ms": ms, "rel_err": e})
+    return rows, series
+
+
+def _bound_rows(quick: bool) -> list[dict]:
+    from tests import reference as ref
+
+    from .bench_core import control_route
+
+    dev = hbfd()
+    w = np.geomspace(1e-4, dev.nyquist * 0.999, 12 if quick else 40)
+    exact = np.array([float(ref.impedance_bound(dev, x)) for x in w])
+    band = w >= 1.0
+    M, B, K = dev.matrices()
+    T = dev.sample_time
+
+    def dense_solve(w=w):
+        s = 1j * (2 / T) * np.tan(0.5 * w * T)
+        out = np.empty(w.size)
+        h = np.cos(0.5 * w * T) * np.exp(-0.5j * w * T)
+        for i, si in enumerate(s):
+            A = M * si + B + K / si
+            rhs = np.zeros((dev.n, 2), complex)
+            rhs[0, 0] = 1.0
+            rhs[-1, 1] = -1.0
+            x = np.linalg.solve(A, rhs)
+            y11, y21, y12, y22 = x[0, 0], -x[-1, 0], x[0, 1] * h[i], -x[-1, 1] * h[i]
+            p = y12 * y21
+            out[i] = (abs(p) + p.real) / (2 * y11.real) - y22.real
+        return out
+
+    routes = {
+        "zwidth (cancellation-free)": lambda: ImpedanceDisplay(dev)._bound_parts(w).bound,
+        "python-control (ss, c2d tustin) + literal eq. 9": lambda: control_route(dev, w)[1],
+        "numpy n x n solve per frequency + literal eq. 9": dense_solve,
+    }
+    rows = []
+    for name, fn in routes.items():
+        t = timeit(fn, repeat=3 if quick else 20)
+        val = fn()
+        err = np.abs(val - exact) / np.abs(exact)
+        rows.append({"name": f"impedance bound, {name}, {w.size} frequencies", "median_ms": t["median_ms"],
+                     "max_rel_err_1rad_to_nyq": float(err[band].max()),
+                     "max_rel_err_1e-4_to_nyq": float(err.max())})
+    return rows
+
+
+def _plot(series: dict, title: str, path: Path) -> None:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:  # pragma: no cover - plots are optional
+        return
+    fig, axes = plt.subplots(1, len(series), figsize=(4.2 * len(series), 3.8), sharey=True)
+    for ax, (z, pts) in zip(np.atleast_1d(axes), series.items()):
+        for method, marker in (("log grid", "o"), ("log grid + refinement", "s"), ("zwidth resonance grid", "*")):
+            sel = [(ms, max(err, 1e-17), n) for name, n, ms, err in pts if name == method]
+            if not sel:
+                continue
+            x, y, n = zip(*sel)
+            ax.loglog(x, y, marker=marker, ms=9 if marker == "*" else 5, label=method)
+            for xi, yi, ni in zip(x, y, n):
+                ax.annotate(str(ni), (xi, yi), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        ax.axhline(1e-6, color="grey", lw=0.8, ls="--")
+        ax.set_title(f"damping ratio {z:g}")
+        ax.set_xlabel("run time (ms)")
+        ax.grid(True, which="both", alpha=0.3)
+    np.atleast_1d(axes)[0].set_ylabel("relative error against dense reference")
+    np.atleast_1d(axes)[0].legend(fontsize=8)
+    fig.suptitle(title)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def run(quick: bool = False) -> list[dict]:
+    start = time.perf_counter()
+    rows, kc_series = _kc_rows(quick)
+    bc_rows, bc_series = _bc_rows(quick)
+    rows += bc_rows
+    rows += _bound_rows(quick)
+    if not quick:
+        docs = Path(__file__).resolve().parents[2] / "docs"
+        _plot(kc_series, "Largest k_c (HBFD, b_c = 50 N s/m): error against run time (labels: points)",
+              docs / "bench_kc_error.png")
+        _plot(bc_series, "Smallest b_c at m_c = 31 kg (HBFD admittance display): error against run time",
+              docs / "bench_bc_error.png")
+    rows.append({"name": "bench_accuracy total", "seconds": time.perf_counter() - start})
+    return rows
+
+
+if __name__ == "__main__":
+    for r in run(quick=False):
+        print(r)
