@@ -71,13 +71,29 @@ def _wsum(weights: np.ndarray, rows: np.ndarray) -> np.ndarray:
 
 
 def _impedances(device: Device, s: np.ndarray, termination: np.ndarray | None):
+    """Node impedances ``m_i s + g_i`` (n x N) and element impedances ``b_i + k_i/s``.
+
+    On the unit circle the Tustin image is purely imaginary, ``s = j W``; then the arrays
+    are filled part by part (about 8x faster than complex broadcasting for long chains).
+    """
     m, g = device.masses, device.ground_dampings
-    node = m[:, None] * s[None, :] + g[:, None]
+    n, N = m.size, s.size
+    if not np.any(s.real):
+        W = s.imag
+        node = np.empty((n, N), dtype=complex)
+        node.real[...] = g[:, None]
+        np.multiply.outer(m, W, out=node.imag)
+        elem = np.empty((n - 1, N), dtype=complex)
+        elem.real[...] = device.dampings[:, None]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            np.multiply.outer(-device.stiffnesses, 1.0 / W, out=elem.imag)
+    else:
+        node = m[:, None] * s[None, :] + g[:, None]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inv_s = 1.0 / s
+        elem = device.dampings[:, None] + device.stiffnesses[:, None] * inv_s[None, :]
     if termination is not None:
         node[-1] += termination
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inv_s = 1.0 / s
-    elem = device.dampings[:, None] + device.stiffnesses[:, None] * inv_s[None, :]
     return node, elem
 
 
@@ -165,14 +181,14 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
     w[n - 1] = 1.0 / L
     for i in range(n - 2, -1, -1):
         np.multiply(w[i + 1], tl[i], out=w[i])
-    om = -w[1:] * rl
+    om_neg = w[1:] * rl  # -om: the sign only matters for the gauge reading below
 
     # real parts as dissipated power (non-negative terms only)
     re11 = np.zeros(N)
     re22 = np.zeros(N)
     if np.any(bb):
         re11 = re11 + _wsum(bb, _abs2(nu))
-        re22 = re22 + _wsum(bb, _abs2(om))
+        re22 = re22 + _wsum(bb, _abs2(om_neg))
     gi = np.flatnonzero(g)  # usually one damper to ground: touch only those rows
     if gi.size:
         re11 = re11 + _wsum(g[gi], _abs2(v[gi]))
@@ -187,17 +203,18 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
     # P~_{k-1} = t_{k-1} (P~_k + phi^_{k-1}/z_{k-1}); node minor = v_k P~_k,
     # element minor = v_{k+1} phi^_k / z_k.
     if want_x:
-        inv_e = 1.0 / elem
-        phi = np.empty((n - 1, N), dtype=complex)
+        phi = np.ones(N, dtype=complex)
+        Q = np.empty((n - 1, N), dtype=complex)  # phi^_k / z_k
         P = np.zeros((n, N), dtype=complex)
-        phi[n - 2] = 1.0
-        P[n - 2] = t[n - 2] * inv_e[n - 2]
+        np.divide(phi, elem[n - 2], out=Q[n - 2])
+        P[n - 2] = t[n - 2] * Q[n - 2]
         for k in range(n - 2, 0, -1):
-            phi[k - 1] = t[k] * phi[k] + node[k] * P[k]
-            P[k - 1] = t[k - 1] * (P[k] + phi[k - 1] * inv_e[k - 1])
+            phi = t[k] * phi + node[k] * P[k]
+            np.divide(phi, elem[k - 1], out=Q[k - 1])
+            P[k - 1] = t[k - 1] * (P[k] + Q[k - 1])
         x = np.zeros(N, dtype=complex)
         if np.any(bb):
-            x = x + _wsum(bb, np.conj(nu) * v[1:] * phi * inv_e)
+            x = x + _wsum(bb, np.conj(nu) * v[1:] * Q)
         if gi.size:
             x = x + _wsum(g[gi], _abs2(v[gi]) * P[gi])
     else:
@@ -213,5 +230,5 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
         re_y22=re22,
         x=x,
         sensor_from_handle=elem[se] * nu[se],  # F_meas = z_s (v_s - v_{s+1})
-        sensor_from_actuator=elem[se] * om[se],  # per unit force *on* node n-1 (+x)
+        sensor_from_actuator=-elem[se] * om_neg[se],  # per unit force *on* node n-1 (+x)
     )
