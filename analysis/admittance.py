@@ -99,11 +99,12 @@ class AdmittanceDisplay(DisplayBase):
     def impedance_range(self, w, mc: float, bc: float) -> tuple[np.ndarray, np.ndarray]:
         """``(Z_min, Z_max)`` of eq. (23) and (24), complex arrays (N s/m)."""
         w = check_frequencies(w, self.device.sample_time)
-        g = self.two_port(w)
-        zca = self.coupling(w, mc, bc)
-        d = g.p22 + zca
-        zmin = d / (g.p11 * d - g.p12 * g.p21)
-        return zmin, 1.0 / g.p11
+        return self._range(self.two_port(w), w, mc, bc)
+
+    def _range(self, g: TwoPort, w: np.ndarray, mc: float, bc: float) -> tuple[np.ndarray, np.ndarray]:
+        d = g.p22 + self.coupling(w, mc, bc)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return d / (g.p11 * d - g.p12 * g.p21), 1.0 / g.p11
 
     def k_max(self) -> float:
         """Low-frequency stiffness of Z_max: the PD spring in series with the chain springs."""
@@ -115,14 +116,16 @@ class AdmittanceDisplay(DisplayBase):
         """Bound, Re(Z_cA), margin, eta, Z_min, Z_max and headline numbers."""
         w = self.frequencies() if w is None else check_frequencies(w, self.device.sample_time)
         br = self.bound_result(w)
-        margin = self.coupling_term(w, mc, bc) - br.bound
-        eta = self.eta_from_margin(br.re_p11, margin, br.abs_p, br.re_p)
-        zmin, zmax = self.impedance_range(w, mc, bc)
+        term = self.coupling_term(w, mc, bc)
+        margin = term - br.bound
+        zmin, zmax = self._range(self.two_port(w), w, mc, bc)
         wa = np.array([APPARENT_FREQUENCY])
-        za = self.impedance_range(wa, mc, bc)[0][0]
+        za = self._range(self._compute(wa)[1], wa, mc, bc)[0][0]
         omega = abs(self._s(wa)[0])
-        b_min = float(zmin[0].real)
-        return self._result(w, mc, bc, zmin, zmax, eta, self.k_max(), b_min, za.imag / omega, za.real, refine)
+        # b_min: the low-frequency (DC) damping of Z_min, read where Z_min is the apparent
+        # free-motion impedance
+        return self._result(w, mc, bc, br, term, margin, zmin, zmax, self.k_max(), za.real,
+                            za.imag / omega, za.real, refine)
 
     # -- design ------------------------------------------------------------------------
     def _limits(self, B: np.ndarray, w: np.ndarray, mc: float) -> tuple[np.ndarray, np.ndarray]:

@@ -133,10 +133,8 @@ class DisplayBase:
             return float(rv[0]), float(rw[0])
         return float(vb[j]), float(wb[j])
 
-    def _result(self, w, a, b, zmin, zmax, eta, k_max, b_min, app_m, app_b, refine) -> StabilityResult:
-        br = self.bound_result(w)
-        term = self.coupling_term(w, a, b)
-        margin = term - br.bound
+    def _result(self, w, a, b, br, term, margin, zmin, zmax, k_max, b_min, app_m, app_b, refine) -> StabilityResult:
+        eta = self.eta_from_margin(br.re_p11, margin, br.abs_p, br.re_p)
         if refine:
             worst, wf = self._worst(lambda x: self.coupling_term(x, a, b) - self._uncached_bound(x), w, margin)
         else:

@@ -143,15 +143,15 @@ class ImpedanceDisplay(DisplayBase):
         """Bound, Re(1/Z_c), margin, eta, Z_min, Z_max and headline numbers."""
         w = self.frequencies() if w is None else check_frequencies(w, self.device.sample_time)
         br = self.bound_result(w)
-        margin = self.coupling_term(w, kc, bc) - br.bound
-        eta = self.eta_from_margin(br.re_p11, margin, br.abs_p, br.re_p)
+        term = self.coupling_term(w, kc, bc)
+        margin = term - br.bound
         with np.errstate(divide="ignore", invalid="ignore"):  # exact poles of a lossless chain
             zmin = 1.0 / br.p11
         zmax = self._zmax(w, kc, bc)
-        wa = np.array([APPARENT_FREQUENCY])
-        za = handle_impedance(self.device, self._s(wa))[0]
-        omega = abs(self._s(wa)[0])
-        return self._result(w, kc, bc, zmin, zmax, eta, self.k_max(kc), self.b_min(), za.imag / omega, za.real, refine)
+        sa = self._s(np.array([APPARENT_FREQUENCY]))
+        za = handle_impedance(self.device, sa)[0]
+        return self._result(w, kc, bc, br, term, margin, zmin, zmax, self.k_max(kc), self.b_min(),
+                            za.imag / abs(sa[0]), za.real, refine)
 
     # -- design ------------------------------------------------------------------------
     def max_stiffness(self, bc: float, w=None) -> StiffnessDesign:
