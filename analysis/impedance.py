@@ -10,16 +10,19 @@ requires ``Re(1/Z_c) >= bound`` with the bound of eq. (9)::
 
 Cancellation-free form
 ----------------------
-With ``y = y12 = y21`` (reciprocal chain), ``a = Re(y e^{-j theta/2})``,
-``|p| + Re p = 2 cos(theta) a^2`` and the bound is ``-cos(theta) det H / Re y11``, where
+With ``y = y12 = y21`` (reciprocal chain) and ``a = Re(y e^{-j theta/2})``,
+``|p| + Re p = 2 cos(theta) a^2``, and the bound is ``-cos(theta) det H / Re y11`` where
 ``H`` is the Hermitian part of ``diag(1, e^{-j theta/2}) y diag(1, e^{-j theta/2})``.
 Expanding with ``c2 = cos(theta/2)``, ``s2 = sin(theta/2)``::
 
-    det H = c2^2 Re X + 2 s2 c2 Im X - s2^2 (Re y11 Re y22 + (Im y)^2),
-    X = Re y11 y22 - Re y * y           (computed from minors, see chain.py).
+    det H = c2^2 Re X + 2 s2 c2 Im X - s2^2 (Re y11 Re y22 + (Im y)^2)
+          = s2^2 |y|^2 - cos(theta) Re X - sin(theta) Im X,
+    X = Re y11 y22 - Re y * y       (so Re X = Re y11 Re y22 - (Re y)^2),
 
-At low frequency ``X -> 0`` (the chain moves as a rigid body) and the bound is
-``~ cos(theta) sin^2(theta/2) |y|^2 / Re y11``: tiny, but every digit is kept.
+with ``X`` computed from minors of the chain responses (see chain.py).  At low frequency
+``X -> 0`` (the chain moves as a rigid body) and the bound tends to
+``cos(theta) sin^2(theta/2) |y|^2 / Re y11``: tiny, but every digit is kept.  Only the
+responses to a force on the handle are needed (plus ``y22`` for Y itself).
 """
 
 from __future__ import annotations
@@ -96,13 +99,15 @@ class ImpedanceDisplay(DisplayBase):
     def _compute(self, w: np.ndarray) -> tuple[BoundResult, TwoPort]:
         """Y(z) of eq. (2) and the bound of eq. (9) from one chain sweep."""
         th = self._theta(w)
-        c, s2, c2 = np.cos(th), np.sin(0.5 * th), np.cos(0.5 * th)
-        r = chain_response(self.device, self._s(w))
-        F = r.re_y11 * r.re_y22 + r.y12.imag ** 2
-        num = c * (s2 * s2 * F - c2 * c2 * r.x.real - 2.0 * s2 * c2 * r.x.imag)
+        c, s2 = np.cos(th), np.sin(0.5 * th)
+        r = chain_response(self.device, self._s(w), want_left=False)
+        abs_y2 = r.y12.real ** 2 + r.y12.imag ** 2
+        # det H = c2^2 Re X + 2 s2 c2 Im X - s2^2 (Re y11 Re y22 + (Im y)^2), and
+        # Re y11 Re y22 = Re X + (Re y)^2, so det H = s2^2 |y|^2 - cos(th) Re X - sin(th) Im X
+        num = c * (s2 * s2 * abs_y2 - c * r.x.real - np.sin(th) * r.x.imag)
         bound, singular = safe_ratio(num, r.re_y11)
         h = c * np.exp(-1j * th)
-        abs_p = (r.y12.real ** 2 + r.y12.imag ** 2) * c
+        abs_p = abs_y2 * c
         re_p = (r.y12 * r.y12 * h).real
         br = BoundResult(w=w, bound=bound, p11=r.y11, re_p11=r.re_y11, abs_p=abs_p, re_p=re_p, singular=singular)
         return br, TwoPort(w=w, p11=r.y11, p12=r.y12 * h, p21=r.y12, p22=r.y22 * h)

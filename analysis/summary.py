@@ -11,11 +11,13 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
+
 from .admittance import AdmittanceDisplay
 from .impedance import ImpedanceDisplay
 from .profiles import Profile
 
-__all__ = ["summarize", "format_summary", "SUMMARY_VERSION"]
+__all__ = ["summarize", "format_summary", "design_summary", "format_design", "SUMMARY_VERSION"]
 
 #: bumped whenever a key is removed or changes meaning (adding keys does not bump it)
 SUMMARY_VERSION = 1
@@ -134,4 +136,90 @@ def format_summary(d: dict[str, Any]) -> str:
     mm = a["design"]["min_mass"]
     lines.append("  design: smallest m_c: " + ("not found" if mm is None else
                  f"{_num(mm['mc'], 'kg')} with b_c = {_num(mm['bc'], 'N s/m')} (binds at {_num(mm['frequency'], 'rad/s')})"))
+    return "\n".join(lines)
+
+
+def design_summary(profile: Profile, display: str | None = None, points: int = 25) -> dict[str, Any]:
+    """Conservative designs and the design chart of one display (``zwidth design``).
+
+    Impedance display: the largest k_c for the profile's b_c, and the chart of the largest
+    k_c over b_c from 1 to 1e4 N s/m.  Admittance display: the feasible b_c interval at the
+    profile's m_c, the smallest m_c, and the feasible (m_c, b_c) region from the smallest
+    m_c to 100 times it.  Infeasible points are ``None``; unbounded ones ``inf``.
+    """
+    display = display or profile.display
+    dev = profile.device
+    if display == "impedance":
+        imp = ImpedanceDisplay(dev)
+        d = imp.max_stiffness(profile.bc)
+        bcs = np.geomspace(1.0, 1e4, points)
+        chart = imp.stiffness_chart(bcs)
+        return {
+            "summary_version": SUMMARY_VERSION,
+            "display": "impedance",
+            "design": {"bc": d.bc, "kc_max": _f(d.kc), "frequency": d.frequency, "margin": d.margin},
+            "chart": {
+                "bc": bcs.tolist(),
+                "kc_max": [None if not np.isfinite(x) and not np.isinf(x) else float(x) for x in chart.kc],
+                "frequency": chart.frequency.tolist(),
+            },
+        }
+    if display != "admittance":
+        raise ValueError(f"display must be 'impedance' or 'admittance', got {display!r}")
+    adm = AdmittanceDisplay(dev, profile.kp, profile.kd)
+    fd = adm.feasible_damping(profile.mc)
+    try:
+        mm = adm.min_mass()
+    except ValueError:
+        mm = None
+    out: dict[str, Any] = {
+        "summary_version": SUMMARY_VERSION,
+        "display": "admittance",
+        "pd": {"kp": profile.kp, "kd": profile.kd},
+        "feasible_damping": {"mc": fd.mc, "low": _f(fd.low), "high": _f(fd.high),
+                             "low_frequency": fd.low_frequency, "high_frequency": fd.high_frequency},
+        "min_mass": None if mm is None else {
+            "mc": mm.mc, "bc": mm.bc, "frequency": mm.frequency,
+            "low": _f(mm.interval.low), "high": _f(mm.interval.high),
+        },
+        "chart": None,
+    }
+    if mm is not None:
+        mcs = np.geomspace(mm.mc, 100.0 * mm.mc, points)
+        ch = adm.mass_chart(mcs)
+        out["chart"] = {
+            "mc": mcs.tolist(),
+            "low": [None if np.isnan(x) else float(x) for x in ch.low],
+            "high": [None if np.isnan(x) else float(x) for x in ch.high],
+        }
+    return out
+
+
+def format_design(d: dict[str, Any]) -> str:
+    """Readable text version of :func:`design_summary`."""
+    if d["display"] == "impedance":
+        g = d["design"]
+        lines = [
+            "Impedance display: largest coupling stiffness satisfying eq. 9",
+            f"  b_c = {_num(g['bc'], 'N s/m')}: k_c <= {_num(g['kc_max'], 'N/m')}"
+            f" (binds at {_num(g['frequency'], 'rad/s')})",
+            "",
+            "  design chart:      b_c (N s/m)     largest k_c (N/m)   binding (rad/s)",
+        ]
+        for bc, kc, f in zip(d["chart"]["bc"], d["chart"]["kc_max"], d["chart"]["frequency"]):
+            lines.append(f"                   {bc:12.5g}   {_num(kc):>18}   {_num(f):>14}")
+        return "\n".join(lines)
+    fd, mm = d["feasible_damping"], d["min_mass"]
+    lines = [
+        f"Admittance display (PD k_p = {_num(d['pd']['kp'], 'N/m')}, k_d = {_num(d['pd']['kd'], 'N s/m')}):"
+        " couplings satisfying eq. 21",
+        f"  m_c = {_num(fd['mc'], 'kg')}: b_c in "
+        + ("none" if fd["low"] is None else f"[{_num(fd['low'])}, {_num(fd['high'])}] N s/m"),
+        "  smallest m_c: " + ("not found" if mm is None else
+                              f"{_num(mm['mc'], 'kg')} with b_c = {_num(mm['bc'], 'N s/m')}"),
+    ]
+    if d["chart"]:
+        lines += ["", "  feasible region:   m_c (kg)        b_c low (N s/m)    b_c high (N s/m)"]
+        for mc, lo, hi in zip(d["chart"]["mc"], d["chart"]["low"], d["chart"]["high"]):
+            lines.append(f"                   {mc:10.5g}   {_num(lo):>18}   {_num(hi):>18}")
     return "\n".join(lines)

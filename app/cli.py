@@ -24,7 +24,7 @@ from pathlib import Path
 
 __all__ = ["main"]
 
-SUBCOMMANDS = ("analyze", "gui", "bench")
+SUBCOMMANDS = ("analyze", "design", "gui", "bench")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -37,6 +37,11 @@ def _parser() -> argparse.ArgumentParser:
     analyze = sub.add_parser("analyze", help="print the analysis summary of a profile")
     analyze.add_argument("profile", metavar="PROFILE", help="profile JSON file")
     analyze.add_argument("--json", action="store_true", help="print the summary as JSON")
+    design = sub.add_parser("design", help="print the conservative designs and the design chart")
+    design.add_argument("profile", metavar="PROFILE", help="profile JSON file")
+    design.add_argument("--display", choices=("impedance", "admittance"),
+                        help="display type (default: the profile's)")
+    design.add_argument("--json", action="store_true", help="print the designs as JSON")
     bench = sub.add_parser("bench", help="run the benchmarks and print their table")
     bench.add_argument("--quick", action="store_true", help="short run (under a minute); writes nothing")
     bench.add_argument("--only", metavar="TEXT", help="only benchmark modules whose name contains TEXT")
@@ -141,6 +146,22 @@ def _analyze(profile_path: str | Path, as_json: bool) -> int:
     return 0
 
 
+def _design(profile_path: str | Path, display: str | None, as_json: bool) -> int:
+    from analysis.profiles import ProfileError, load_profile
+    from analysis.summary import design_summary, format_design
+
+    try:
+        profile = load_profile(profile_path)
+    except ProfileError as err:
+        return _error(str(err))
+    result = design_summary(profile, display)
+    if as_json:
+        print(json.dumps(_jsonable(result), indent=2, allow_nan=False))
+    else:
+        print(format_design(result))
+    return 0
+
+
 # -- gui -----------------------------------------------------------------------------------------
 
 
@@ -184,6 +205,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.command == "analyze":
             return _analyze(args.profile, args.json)
+        if args.command == "design":
+            return _design(args.profile, args.display, args.json)
         if args.command == "bench":
             from app.bench import run_bench
 

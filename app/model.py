@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import numpy as np
+from . import qt_compat  # noqa: F401 - before any Qt call (PySide6 6.12 on Python 3.11)
 from PySide6.QtCore import QObject, Signal
 
 from analysis import Device

@@ -12,6 +12,7 @@ import traceback
 from collections.abc import Callable
 from typing import Any
 
+from . import qt_compat  # noqa: F401 - before any Qt call (PySide6 6.12 on Python 3.11)
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, Signal, Slot
 
 __all__ = ["TaskRunner", "Job"]
@@ -23,15 +24,17 @@ class _Relay(QObject):
     """Carries a job's reports from the worker thread to the GUI thread (queued signals)."""
 
     progress = Signal(str, int, int, int)  # name, generation, done, total
-    done = Signal(str, int, object)
+    done = Signal(str, int)  # the result waits in the runner's mailbox (no Python objects in signals)
     error = Signal(str, int, str)
 
 
 class _Runnable(QRunnable):
-    def __init__(self, name: str, generation: int, fn: Job, relay: _Relay, stop: threading.Event) -> None:
+    def __init__(self, name: str, generation: int, fn: Job, relay: _Relay, stop: threading.Event,
+                 mailbox: dict, lock: threading.Lock) -> None:
         super().__init__()
         self.setAutoDelete(False)
         self._name, self._gen, self._fn, self._relay, self._stop = name, generation, fn, relay, stop
+        self._mailbox, self._lock = mailbox, lock
 
     def run(self) -> None:
         name, gen = self._name, self._gen
@@ -46,7 +49,9 @@ class _Runnable(QRunnable):
             traceback.print_exc()
             self._relay.error.emit(name, gen, f"{type(exc).__name__}: {exc}")
             return
-        self._relay.done.emit(name, gen, result)
+        with self._lock:
+            self._mailbox[(name, gen)] = result
+        self._relay.done.emit(name, gen)
 
 
 class TaskRunner(QObject):
@@ -69,6 +74,8 @@ class TaskRunner(QObject):
         self._generation: dict[str, int] = {}
         self._stops: dict[str, threading.Event] = {}
         self._jobs: dict[tuple[str, int], _Runnable] = {}
+        self._mailbox: dict[tuple[str, int], object] = {}
+        self._lock = threading.Lock()
         self.dropped = 0  # stale results thrown away (for tests)
 
     def submit(self, name: str, fn: Job) -> int:
@@ -80,7 +87,7 @@ class TaskRunner(QObject):
         self._generation[name] = gen
         stop = threading.Event()
         self._stops[name] = stop
-        job = _Runnable(name, gen, fn, self._relay, stop)
+        job = _Runnable(name, gen, fn, self._relay, stop, self._mailbox, self._lock)
         self._jobs[(name, gen)] = job
         self._pool.start(job)
         self.started.emit(name)
@@ -122,9 +129,11 @@ class TaskRunner(QObject):
         if self._current(name, gen):
             self.progress.emit(name, done, total)
 
-    @Slot(str, int, object)
-    def _on_done(self, name: str, gen: int, result: object) -> None:
+    @Slot(str, int)
+    def _on_done(self, name: str, gen: int) -> None:
         self._jobs.pop((name, gen), None)
+        with self._lock:
+            result = self._mailbox.pop((name, gen), None)
         if not self._current(name, gen):
             self.dropped += 1
             return

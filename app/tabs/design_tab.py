@@ -1,0 +1,69 @@
+"""The design tab: the design chart (computed on the worker) with the current gains on it."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Slot
+from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
+
+from ..views.base import PlotView
+from ..views.design_chart import DesignChart
+from .base import AnalysisTab, AppContext
+
+__all__ = ["DesignTab", "TAB"]
+
+
+class DesignTab(AnalysisTab):
+    title = "Design chart"
+    order = 20
+    nodes = frozenset({"design_chart", "stability"})
+
+    def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
+        super().__init__(ctx, parent)
+        self.chart = DesignChart()
+        hint = QLabel("Click the chart to set the coupling gains (one undo step).  The chart is conservative: "
+                      "every point in the shaded region satisfies the two-port bound over the analysis band.")
+        hint.setWordWrap(True)
+        hint.setStyleSheet("color: palette(mid);")
+        lay = QVBoxLayout(self)
+        lay.setContentsMargins(4, 4, 4, 4)
+        lay.addWidget(self.chart, 1)
+        lay.addWidget(hint)
+        self.chart.pointPicked.connect(self._on_pick)
+        ctx.graph.ready.connect(self._on_ready)
+
+    def refresh(self) -> None:
+        graph = self.ctx.graph
+        value = graph.request("design_chart")
+        fresh = graph.is_fresh("design_chart")
+        p = self.ctx.model.profile
+        if value is not None and value.display == p.display:
+            self.chart.update_chart(value)
+        elif value is not None:
+            self.chart.update_chart(None)
+        self.chart.set_busy(not fresh)
+        stable = graph.get("stability").stable
+        if p.display == "impedance":
+            self.chart.update_point(p.bc, p.kc, stable)
+        else:
+            self.chart.update_point(p.mc, p.bc_adm, stable)
+        self.refreshes += 1
+        self.stale = False
+
+    @Slot(str)
+    def _on_ready(self, name: str) -> None:
+        if name == "design_chart" and self.isVisible():
+            self.refresh()
+
+    @Slot(float, float)
+    def _on_pick(self, x: float, y: float) -> None:
+        x, y = float(f"{x:.4g}"), float(f"{y:.4g}")
+        if self.ctx.model.profile.display == "impedance":
+            self.ctx.editor.edit_many({"bc": x, "kc": y}, "Pick gains on the design chart")
+        else:
+            self.ctx.editor.edit_many({"mc": x, "bc_adm": y}, "Pick gains on the design chart")
+
+    def plot_views(self) -> list[PlotView]:
+        return [self.chart]
+
+
+TAB = DesignTab

@@ -1,0 +1,150 @@
+"""Design chart: largest k_c against b_c (impedance), or the feasible (m_c, b_c) region (admittance).
+
+Shows the current gains as a point.  A left click emits :attr:`DesignChart.pointPicked` with the
+data coordinates; the tab turns it into an undo command.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import Qt, Signal, Slot
+from PySide6.QtWidgets import QWidget
+
+from ..compute_graph import ChartResult
+from .base import PlotView, Series, clean_xy, plain
+
+__all__ = ["DesignChart"]
+
+
+class DesignChart(PlotView):
+    pointPicked = Signal(float, float)  # x, y in data units
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__("Design chart", parent)
+        self.set_log(True, True)
+        self.display = "impedance"
+        self.upper = self.curve("largest k<sub>c</sub> (eq. 9)", "#1f5fbf")
+        self.lower = self.curve(None, "#1f5fbf")
+        self.fill = pg.FillBetweenItem(self.lower, self.upper, brush=pg.mkBrush(43, 138, 62, 50))
+        self.fill.setZValue(-5)
+        self.plot.addItem(self.fill)
+        self.point = pg.PlotDataItem([], [], pen=None, symbol="o", symbolSize=12, symbolBrush="#c92a2a",
+                                     symbolPen=pg.mkPen("w", width=1.5), name="current gains")
+        self.point.setZValue(20)
+        self.plot.addItem(self.point)
+        self.legend_fill = pg.PlotDataItem([], [], pen=None, symbol="s", symbolSize=12,
+                                           symbolBrush=(43, 138, 62, 90), symbolPen=None)
+        self.legend.addItem(self.legend_fill, "feasible (unconditionally stable)")
+        self.status = ""
+        self._series: list[Series] = []
+        self._chart: ChartResult | None = None
+        self._notes: list[str] = []
+        self._point_note = ""
+        self.set_axis_labels("b_c", "N·s/m", "k_c", "N/m")
+        self.plot_widget.scene().sigMouseClicked.connect(self._on_click)
+        self.plot_widget.setToolTip("Click to set the coupling gains")
+
+    def set_busy(self, busy: bool) -> None:
+        self.header.setText(f"<b>{self.title}</b>" + ("  <i>(updating…)</i>" if busy else ""))
+
+    def update_chart(self, res: ChartResult | None) -> None:
+        self._chart = res
+        self._notes = []
+        if res is None:
+            self.upper.setData([], [])
+            self.lower.setData([], [])
+            self._series = []
+            self._refresh_warning()
+            self.bump()
+            return
+        self.display = res.display
+        if res.display == "impedance":
+            ch = res.chart
+            self.set_axis_labels("b_c", "N·s/m", "k_c", "N/m")
+            self.title = "Design chart: largest stable k_c against b_c"
+            kc = np.asarray(ch.kc, float)
+            unlimited = np.isinf(kc)
+            finite = kc[np.isfinite(kc) & (kc > 0)]
+            top = float(finite.max()) * 10 if finite.size else 1e6
+            if np.any(unlimited):
+                self._notes.append(f"k_c unlimited at {int(unlimited.sum())} b_c value(s), drawn clipped at "
+                                   f"{plain(top)} N/m")
+            kc = np.where(unlimited, top, kc)
+            infeasible = np.isnan(kc)
+            if np.any(infeasible):
+                self._notes.append(f"no k_c ≥ 0 satisfies eq. 9 for b_c ≥ {plain(float(ch.bc[infeasible].min()))} "
+                                   "N·s/m (not drawn)")
+            x, y, _ = clean_xy(ch.bc, kc, True, True)
+            base = float(y.min()) / 10 if y.size else 1.0
+            self.upper.setData(x, y)
+            self.lower.setData(x, np.full(x.size, base))
+            self.lower.setVisible(False)
+            self.legend.getLabel(self.upper).setText("largest k<sub>c</sub> (eq. 9)")
+            self._series = [Series("largest k_c", "b_c (N s/m)", "k_c max (N/m)", x, y)]
+        else:
+            ch = res.chart
+            self.set_axis_labels("m_c", "kg", "b_c", "N·s/m")
+            self.title = "Design chart: feasible (m_c, b_c) region"
+            low, high = np.asarray(ch.low, float), np.asarray(ch.high, float)
+            fin = high[np.isfinite(high)]
+            top = float(max(fin.max() if fin.size else 0, np.nanmax(low) if np.any(np.isfinite(low)) else 1)) * 10
+            if np.any(np.isinf(high)):
+                self._notes.append(f"upper b_c edge unbounded at {int(np.isinf(high).sum())} m_c value(s), drawn "
+                                   f"clipped at {plain(top)} N·s/m")
+            high = np.where(np.isinf(high), top, high)
+            ok = np.isfinite(low) & np.isfinite(high) & (low > 0)
+            if not np.all(ok):
+                self._notes.append(f"no b_c satisfies eq. 21 at {int((~ok).sum())} of {ok.size} m_c value(s)")
+            x = np.asarray(ch.mc, float)[ok]
+            self.upper.setData(x, high[ok])
+            self.lower.setData(x, low[ok])
+            self.lower.setVisible(True)
+            self.legend.getLabel(self.upper).setText("b<sub>c</sub> edges (eq. 21)")
+            self._series = [Series("b_c low", "m_c (kg)", "b_c low (N s/m)", x, low[ok]),
+                            Series("b_c high", "m_c (kg)", "b_c high (N s/m)", x, high[ok])]
+        self.header.setText(f"<b>{self.title}</b>")
+        self._refresh_warning()
+        self.bump()
+
+    def update_point(self, x: float, y: float, stable: bool | None) -> None:
+        self._point_note = ""
+        if x > 0 and y > 0 and math.isfinite(x) and math.isfinite(y):
+            self.point.setData([x], [y])
+        else:
+            self.point.setData([], [])
+            self._point_note = "current gains not drawn (zero on a log axis)"
+        pal = self.palette_colors()
+        self.point.setSymbolBrush(pal["c"] if stable else pal["mark"])
+        self._refresh_warning()
+        self.bump()
+
+    def _refresh_warning(self) -> None:
+        self.set_warning([*self._notes, self._point_note])
+
+    @Slot(object)
+    def _on_click(self, event: object) -> None:
+        if event.button() != Qt.MouseButton.LeftButton or event.double():
+            return
+        vb = self.plot.getViewBox()
+        pos = event.scenePos()
+        if not vb.sceneBoundingRect().contains(pos):
+            return
+        x, y = self.data_point(vb.mapSceneToView(pos))
+        event.accept()
+        self.pointPicked.emit(float(x), float(y))
+
+    def restyle(self, pal: dict) -> None:
+        self.upper.setPen(pg.mkPen(pal["a"], width=2))
+        self.lower.setPen(pg.mkPen(pal["a"], width=2))
+        self.point.setSymbolPen(pg.mkPen(pal["bg"], width=1.5))
+
+    def export_series(self) -> list[Series]:
+        rows = list(self._series)
+        pts = self.point.getData()
+        if pts[0] is not None and len(pts[0]):
+            xl, yl = (("b_c (N s/m)", "k_c (N/m)") if self.display == "impedance" else ("m_c (kg)", "b_c (N s/m)"))
+            rows.append(Series("current gains", xl, yl, np.asarray(pts[0]), np.asarray(pts[1])))
+        return rows

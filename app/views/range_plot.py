@@ -1,0 +1,71 @@
+"""Impedance range: |Z_min| and |Z_max| against ω, log-log, the band between them shaded (Fig. 6)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QWidget
+
+from analysis import StabilityResult
+
+from .base import PlotView, Series, clean_xy, plain
+
+__all__ = ["RangePlot"]
+
+
+class RangePlot(PlotView):
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__("Impedance range (Z-width)", parent)
+        self.set_log(True, True)
+        self.set_axis_labels("ω", "rad/s", "|Z|", "N·s/m")
+        self.zmax_curve = self.curve("|Z<sub>max</sub>|", "#1f5fbf")
+        self.zmin_curve = self.curve("|Z<sub>min</sub>|", "#2b8a3e")
+        self.fill = pg.FillBetweenItem(self.zmin_curve, self.zmax_curve, brush=pg.mkBrush(31, 95, 191, 45))
+        self.fill.setZValue(-5)
+        self.plot.addItem(self.fill)
+        self.kmax_curve = self.curve("k<sub>max</sub>/ω", "#868e96", width=1.2, style=Qt.PenStyle.DashLine)
+        self.bmin_curve = self.curve("b<sub>min</sub>", "#868e96", width=1.2, style=Qt.PenStyle.DotLine)
+        self._series: list[Series] = []
+
+    def update_result(self, res: StabilityResult) -> None:
+        w = res.w
+        eqs = ("11", "12") if res.display == "impedance" else ("23", "24")
+        x1, y1, h1 = clean_xy(w, np.abs(res.zmin), True, True)
+        x2, y2, h2 = clean_xy(w, np.abs(res.zmax), True, True)
+        self.zmin_curve.setData(x1, y1)
+        self.zmax_curve.setData(x2, y2)
+        self.legend.getLabel(self.zmin_curve).setText(f"|Z<sub>min</sub>| (eq. {eqs[0]})")
+        self.legend.getLabel(self.zmax_curve).setText(f"|Z<sub>max</sub>| (eq. {eqs[1]})")
+        self._series = [Series("|Z_min|", "omega (rad/s)", "|Z_min| (N s/m)", x1, y1),
+                        Series("|Z_max|", "omega (rad/s)", "|Z_max| (N s/m)", x2, y2)]
+        notes = []
+        if h1 + h2:
+            notes.append(f"{h1 + h2} point(s) not drawn (non-finite or zero)")
+        km, bm = res.k_max, res.b_min
+        if np.isfinite(km) and km > 0:
+            xk, yk, _ = clean_xy(w, km / w, True, True)
+            self.kmax_curve.setData(xk, yk)
+            self._series.append(Series("k_max/omega", "omega (rad/s)", "k_max/omega (N s/m)", xk, yk))
+        else:
+            self.kmax_curve.setData([], [])
+        self.legend.getLabel(self.kmax_curve).setText(f"k<sub>max</sub>/ω, k<sub>max</sub> = {plain(km)} N/m")
+        if np.isfinite(bm) and bm > 0:
+            self.bmin_curve.setData([w[0], w[-1]], [bm, bm])
+            self._series.append(Series("b_min", "omega (rad/s)", "b_min (N s/m)",
+                                       np.array([w[0], w[-1]]), np.array([bm, bm])))
+        else:
+            self.bmin_curve.setData([], [])
+        self.legend.getLabel(self.bmin_curve).setText(f"b<sub>min</sub> = {plain(bm)} N·s/m")
+        self.set_warning(notes)
+        self.bump()
+
+    def restyle(self, pal: dict) -> None:
+        self.zmax_curve.setPen(pg.mkPen(pal["a"], width=2))
+        self.zmin_curve.setPen(pg.mkPen(pal["c"], width=2))
+        self.fill.setBrush(pg.mkBrush(pal["fill"]))
+        self.kmax_curve.setPen(pg.mkPen(pal["muted"], width=1.2, style=Qt.PenStyle.DashLine))
+        self.bmin_curve.setPen(pg.mkPen(pal["muted"], width=1.2, style=Qt.PenStyle.DotLine))
+
+    def export_series(self) -> list[Series]:
+        return list(self._series)

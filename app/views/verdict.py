@@ -1,0 +1,70 @@
+"""The verdict: unconditionally stable or not, worst margin, binding frequency, η.  Always visible."""
+
+from __future__ import annotations
+
+import math
+
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QFrame, QHBoxLayout, QLabel, QVBoxLayout, QWidget
+
+from analysis import StabilityResult
+
+from .base import fmt
+
+__all__ = ["VerdictView"]
+
+
+def _cell(title: str) -> tuple[QWidget, QLabel]:
+    w = QWidget()
+    lay = QVBoxLayout(w)
+    lay.setContentsMargins(10, 0, 10, 0)
+    lay.setSpacing(0)
+    t = QLabel(title)
+    t.setStyleSheet("font-size: 11px; color: palette(mid);")
+    v = QLabel("–")
+    v.setTextFormat(Qt.TextFormat.RichText)
+    v.setStyleSheet("font-size: 15px; font-weight: 600;")
+    lay.addWidget(t)
+    lay.addWidget(v)
+    return w, v
+
+
+class VerdictView(QFrame):
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setFrameShape(QFrame.Shape.StyledPanel)
+        self.setObjectName("verdict")
+        self.revision = 0
+        self.badge = QLabel("–")
+        self.badge.setAlignment(Qt.AlignmentFlag.AlignCenter)
+        self.badge.setMinimumWidth(260)
+        lay = QHBoxLayout(self)
+        lay.setContentsMargins(8, 6, 8, 6)
+        lay.addWidget(self.badge)
+        cells = {}
+        for key, title in (("margin", "worst margin"), ("freq", "binding frequency"), ("eta", "min η (Llewellyn)"),
+                           ("kmax", "k_max (low-ω stiffness)"), ("bmin", "b_min (low-ω damping)")):
+            w, v = _cell(title)
+            cells[key] = v
+            lay.addWidget(w)
+        lay.addStretch(1)
+        self.margin, self.frequency, self.eta = cells["margin"], cells["freq"], cells["eta"]
+        self.kmax, self.bmin = cells["kmax"], cells["bmin"]
+
+    def update_result(self, res: StabilityResult) -> None:
+        unit = "m/(N·s)" if res.display == "impedance" else "N·s/m"
+        if res.stable:
+            text, color = "✔ Unconditionally stable", "#2b8a3e"
+        else:
+            text, color = "✘ Not unconditionally stable", "#c92a2a"
+        self.badge.setText(text)
+        self.badge.setStyleSheet(f"background: {color}; color: white; font-size: 15px; font-weight: 700;"
+                                 "border-radius: 4px; padding: 6px 12px;")
+        self.margin.setText(f"{fmt(res.worst_margin, 3)} {unit}")
+        wf = res.worst_frequency
+        hz = f" ({fmt(wf / (2 * math.pi), 3)} Hz)" if math.isfinite(wf) else ""
+        self.frequency.setText(f"{fmt(wf)} rad/s{hz}")
+        self.eta.setText(fmt(res.min_eta, 6))
+        self.kmax.setText(f"{fmt(res.k_max)} N/m")
+        self.bmin.setText(f"{fmt(res.b_min)} N·s/m")
+        self.revision += 1
