@@ -1,8 +1,10 @@
 """Device profiles: a device, its sample period and band, and the controller settings, as JSON.
 
-A profile file looks like this (schema version 1)::
+A profile file looks like this (schema version 3; the optional sections ``wall``,
+``observer`` (schema 2) and ``simulation`` (schema 3) are described in
+:mod:`analysis.profile_sections`)::
 
-    {"schema_version": 1, "name": "HBFD", "notes": "...",
+    {"schema_version": 3, "name": "HBFD", "notes": "...",
      "device": {"masses": [...], "stiffnesses": [...], "dampings": [...],
                 "ground_dampings": [...], "sensor_element": 0},
      "sample_time": 0.001, "band": {"min": 1.0},
@@ -39,6 +41,9 @@ from pathlib import Path
 import numpy as np
 
 from .device import Device
+from .observer import ObserverSettings
+from .profile_sections import MIGRATION_STEPS, SECTION_KEYS, SimulationSection, parse_sections, sections_to_dict
+from .wall import WallSettings
 from .errors import ValidationError
 from .resources import resource_path
 
@@ -57,10 +62,10 @@ __all__ = [
 ]
 
 #: Schema version written by :func:`save_profile` and the newest one :func:`load_profile` reads.
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 3
 
 #: ``MIGRATIONS[v]`` turns a schema-``v`` profile dict into a schema-``v + 1`` one.
-MIGRATIONS: dict[int, Callable[[dict], dict]] = {}
+MIGRATIONS: dict[int, Callable[[dict], dict]] = dict(MIGRATION_STEPS)
 
 #: The two display types (section III impedance display, section IV admittance display).
 DISPLAYS = ("impedance", "admittance")
@@ -192,7 +197,11 @@ class Profile:
     mc, bc_adm:
         Admittance-display virtual coupling mass (kg) and damping (N s/m), > 0.
     kp, kd:
-        PD virtual wall stiffness (N/m) and damping (N s/m), >= 0.
+        PD position-loop stiffness (N/m) and damping (N s/m) of the admittance display
+        (eq. 30), >= 0.
+    wall, observer, simulation:
+        Optional sections (schema 2 and 3): the wall-controller design (Eom, Suh & Yi),
+        the disturbance observer, and the sampled-data simulator's options and scenario.
     """
 
     name: str
@@ -205,8 +214,16 @@ class Profile:
     bc_adm: float
     kp: float
     kd: float
+    wall: WallSettings | None = None
+    observer: ObserverSettings | None = None
+    simulation: SimulationSection | None = None
 
     def __post_init__(self) -> None:
+        for field_name, cls in (("wall", WallSettings), ("observer", ObserverSettings),
+                                ("simulation", SimulationSection)):
+            value = getattr(self, field_name)
+            if value is not None and not isinstance(value, cls):
+                raise ValidationError(field_name, f"None or {cls.__name__}", value)
         if not isinstance(self.name, str) or not self.name.strip():
             raise ValidationError("name", "a non-empty string", self.name)
         if not isinstance(self.notes, str):
@@ -248,6 +265,7 @@ _TOP_KEYS = {
     "impedance_coupling",
     "admittance_coupling",
     "pd_gains",
+    *SECTION_KEYS,
 }
 _DEVICE_KEYS = {"masses", "stiffnesses", "dampings", "damping_ratios", "ground_dampings", "sensor_element"}
 
@@ -483,8 +501,9 @@ def _build(data: object) -> Profile:
     for field_name, value in scalars.items():
         jp, allowed, positive = _SCALARS[field_name]
         scalars[field_name] = _number(value, jp, allowed, positive)
+    sections = parse_sections(data)
     try:
-        return Profile(name=name, notes=notes, device=device, display=display, **scalars)
+        return Profile(name=name, notes=notes, device=device, display=display, **scalars, **sections)
     except ValidationError as err:
         raise _translate(err) from err
 
@@ -567,6 +586,7 @@ def profile_to_dict(profile: Profile) -> dict:
         "impedance_coupling": {"stiffness": profile.kc, "damping": profile.bc},
         "admittance_coupling": {"mass": profile.mc, "damping": profile.bc_adm},
         "pd_gains": {"stiffness": profile.kp, "damping": profile.kd},
+        **sections_to_dict(profile.wall, profile.observer, profile.simulation),
     }
 
 
