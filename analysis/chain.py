@@ -30,7 +30,7 @@ import numpy as np
 
 from .device import Device
 
-__all__ = ["ChainResponse", "chain_response"]
+__all__ = ["ChainResponse", "chain_response", "chain_impedances", "handle_impedance"]
 
 
 @dataclass(frozen=True)
@@ -108,18 +108,31 @@ def _impedances(device: Device, s: np.ndarray, termination: np.ndarray | None):
     return node, elem
 
 
-def handle_impedance(device: Device, s: np.ndarray, termination: np.ndarray | None = None) -> np.ndarray:
+def handle_impedance(device: Device, s: np.ndarray, termination: np.ndarray | None = None,
+                     impedances: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """Driving-point impedance at the handle (mass 0), optionally with an impedance from
     the actuator mass to ground.  Right continued-fraction sweep only: 4 operations per mass.
+
+    ``impedances`` may pass the (node, element) arrays of :func:`chain_impedances` for the
+    same ``s`` (they depend on the device only), so that a coupling change does not rebuild
+    them.
     """
     s = np.asarray(s, dtype=complex)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        node, elem = _impedances(device, s, termination)
-        R = node[-1]
+        node, elem = _impedances(device, s, None) if impedances is None else impedances
+        R = node[-1] if termination is None else node[-1] + termination
         for i in range(device.n - 2, -1, -1):
             e = elem[i]
             R = node[i] + e * R / (e + R)
     return R
+
+
+def chain_impedances(device: Device, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Node impedances ``m_i s + g_i`` and element impedances ``b_i + k_i/s`` (read-only)."""
+    node, elem = _impedances(device, np.asarray(s, dtype=complex), None)
+    node.setflags(write=False)
+    elem.setflags(write=False)
+    return node, elem
 
 
 def chain_response(device: Device, s: np.ndarray, termination: np.ndarray | None = None,
@@ -180,7 +193,7 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
     v[0] = 1.0 / R
     for i in range(n - 1):
         np.multiply(v[i], t[i], out=v[i + 1])
-    nu = v[:-1] * r
+    nu = np.multiply(v[:-1], r, out=r)  # r is not needed any more: reuse its memory
 
     # left sweep: L[i] = impedance of nodes 0..i seen at node i (node n-1 carries the
     # termination); w_i = w_{i+1} tl_i, om_i = w_i - w_{i+1} = -w_{i+1} rl_i
@@ -231,7 +244,8 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
     if want_x:
         phi = np.ones(N, dtype=complex)
         Q = np.empty((n - 1, N), dtype=complex)  # phi^_k / z_k
-        P = np.zeros((n, N), dtype=complex)
+        P = np.empty((n, N), dtype=complex)
+        P[n - 1] = 0.0
         np.divide(phi, elem[n - 2], out=Q[n - 2])
         P[n - 2] = t[n - 2] * Q[n - 2]
         for k in range(n - 2, 0, -1):
@@ -240,7 +254,10 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
             P[k - 1] = t[k - 1] * (P[k] + Q[k - 1])
         x = np.zeros(N, dtype=complex)
         if np.any(bb):
-            x = x + _wsum(bb, np.conj(nu) * v[1:] * Q)
+            tmp = np.conjugate(nu)
+            tmp *= v[1:]
+            tmp *= Q
+            x = x + _wsum(bb, tmp)
         gx = gi[gi < n - 1]  # P~_{n-1} = 0: a damper on the actuator mass adds nothing here
         if gx.size:
             x = x + _wsum(g[gx], _abs2(v[gx]) * P[gx])

@@ -32,7 +32,7 @@ import math
 import numpy as np
 
 from . import grids
-from .chain import chain_response, handle_impedance
+from .chain import chain_impedances, chain_response, handle_impedance
 from .discretize import check_frequencies, held_spring_damper, spring_damper
 from .display_base import APPARENT_FREQUENCY, DisplayBase, safe_ratio
 from .results import BoundResult, StabilityResult, StiffnessChart, StiffnessDesign, TwoPort
@@ -92,6 +92,11 @@ class ImpedanceDisplay(DisplayBase):
 
     display = "impedance"
 
+    def __init__(self, device):
+        super().__init__(device)
+        self._impedance_cache: tuple[bytes, tuple[np.ndarray, np.ndarray]] | None = None
+        self._apparent: tuple[complex, float] | None = None
+
     def modes(self) -> np.ndarray:
         return grids.device_modes(self.device)
 
@@ -132,7 +137,18 @@ class ImpedanceDisplay(DisplayBase):
 
     def _zmax(self, w: np.ndarray, kc: float, bc: float) -> np.ndarray:
         term = held_spring_damper(w, self.device.sample_time, kc, bc)
-        return handle_impedance(self.device, self._s(w), term)
+        key = w.tobytes()
+        if self._impedance_cache is None or self._impedance_cache[0] != key:
+            self._impedance_cache = (key, chain_impedances(self.device, self._s(w)))
+        return handle_impedance(self.device, self._s(w), term, self._impedance_cache[1])
+
+    def apparent_impedance(self) -> complex:
+        """Z_min at :data:`APPARENT_FREQUENCY`: the free-motion impedance (device only, cached)."""
+        if self._apparent is None:
+            sa = self._s(np.array([APPARENT_FREQUENCY]))
+            za = complex(handle_impedance(self.device, sa)[0])
+            self._apparent = (za, abs(sa[0]))
+        return self._apparent[0]
 
     def k_max(self, kc: float) -> float:
         """Low-frequency stiffness of Z_max: coupling spring in series with the chain springs."""
@@ -153,10 +169,9 @@ class ImpedanceDisplay(DisplayBase):
         with np.errstate(divide="ignore", invalid="ignore"):  # exact poles of a lossless chain
             zmin = 1.0 / br.p11
         zmax = self._zmax(w, kc, bc)
-        sa = self._s(np.array([APPARENT_FREQUENCY]))
-        za = handle_impedance(self.device, sa)[0]
+        za = self.apparent_impedance()
         return self._result(w, kc, bc, br, term, margin, zmin, zmax, self.k_max(kc), self.b_min(),
-                            za.imag / abs(sa[0]), za.real, refine)
+                            za.imag / self._apparent[1], za.real, refine)
 
     # -- design ------------------------------------------------------------------------
     def max_stiffness(self, bc: float, w=None) -> StiffnessDesign:

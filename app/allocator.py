@@ -1,0 +1,45 @@
+"""Keep freed numpy temporaries in the heap instead of returning them to the kernel.
+
+glibc's allocator gives memory above its trim threshold (128 KiB) back to the kernel on
+free, and large blocks come from fresh ``mmap`` pages.  The analysis allocates and frees
+arrays of 10^4..10^6 elements on every slider move, so each evaluation page-faults its
+working memory back in: for the HBFD at 2000 frequencies that is a third of the run time
+(1.6 ms -> 1.0 ms when tuned; BENCHMARKS.md).  zwidth's own processes (the GUI, the command
+line and the benchmarks) raise both thresholds at start-up.  The analysis package itself never
+does this: it is a library, and this setting belongs to the process.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import sys
+
+__all__ = ["tune_allocator"]
+
+_M_TRIM_THRESHOLD = -1
+_M_TOP_PAD = -2
+_M_MMAP_THRESHOLD = -3
+
+
+def tune_allocator(enable: bool = True) -> bool:
+    """Raise (or, with ``enable=False``, restore) glibc's trim and mmap thresholds.
+
+    Returns ``True`` when the settings were applied (glibc on Linux), ``False`` elsewhere.
+    """
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
+        mallopt = libc.mallopt
+    except (OSError, AttributeError):
+        return False
+    mallopt.argtypes = [ctypes.c_int, ctypes.c_int]
+    mallopt.restype = ctypes.c_int
+    if enable:
+        ok = mallopt(_M_TRIM_THRESHOLD, 256 << 20) and mallopt(_M_TOP_PAD, 64 << 20)
+        ok = ok and mallopt(_M_MMAP_THRESHOLD, 32 << 20)
+    else:  # glibc defaults
+        ok = mallopt(_M_TRIM_THRESHOLD, 128 << 10) and mallopt(_M_TOP_PAD, 128 << 10)
+        ok = ok and mallopt(_M_MMAP_THRESHOLD, 128 << 10)
+    return bool(ok)
