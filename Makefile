@@ -8,7 +8,7 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 PROFILE ?= resources/profiles/hbfd.json
 
-.PHONY: setup venv system-deps run test lint clean distclean
+.PHONY: setup venv system-deps run test lint package clean distclean
 
 # Check (and as root install) the system libraries Qt needs; create the venv; install the
 # project editable with its test extra, again only when pyproject.toml changes.
@@ -33,6 +33,12 @@ test: setup
 
 lint: setup
 	$(VENV)/bin/ruff check analysis app tests
+
+# The standalone one-folder application (dist/zwidth/zwidth) with PyInstaller, then its test.
+package: setup
+	$(PY) -m pip install -e '.[test,package]'
+	$(PY) packaging/build.py
+	QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q tests/test_packaging.py
 
 clean:
 	rm -rf build dist *.egg-info .pytest_cache .ruff_cache .hypothesis $(STAMP)

@@ -192,7 +192,15 @@ def _gui(profile_path: str | Path | None) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command; returns the exit code (0 ok, 1 bad profile, 2 usage error)."""
+    from app.allocator import tune_allocator
+
+    tune_allocator()  # our process: keep numpy's temporaries in the heap (see app/allocator.py)
     args_list = list(sys.argv[1:] if argv is None else argv)
+    # Hidden self-check of an installed or frozen build (app/selftest.py, packaging/).
+    if args_list[:1] == ["selftest"] or os.environ.get("ZWIDTH_SELFTEST") == "1":
+        from app.selftest import run_selftest
+
+        return run_selftest()
     if not args_list:
         args_list = ["gui"]
     elif args_list[0] not in SUBCOMMANDS and args_list[0].lower().endswith(".json"):

@@ -179,3 +179,22 @@ def test_icons_match_the_svg() -> None:
     proc = subprocess.run([sys.executable, str(PACKAGING / "make_icons.py"), "--check"], cwd=ROOT, env=env,
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+@pytest.mark.gui
+def test_about_box_and_icon(qtbot) -> None:
+    """app.about: the icon has every size; the About box names the papers and the licenses."""
+    from app.about import AboutDialog, app_icon, app_version
+
+    icon = app_icon()
+    assert not icon.isNull()
+    assert {s.width() for s in icon.availableSizes()} >= {16, 32, 48, 64, 128, 256}
+    dialog = AboutDialog()
+    qtbot.addWidget(dialog)
+    text = dialog.title_label.text() + dialog.body_label.text()
+    assert app_version() in text
+    for needle in ("Stability and Performance of Haptic Displays", "Adams, Moreyra &amp; Hannaford",
+                   "Considering Transparency and Robust Stability", "Eom, Suh &amp; Yi",
+                   "NumPy", "SciPy", "PySide6", "pyqtgraph", "BSD-3-Clause", "LGPL", "MIT"):
+        assert needle in text, needle
+    assert not dialog.windowIcon().isNull()
