@@ -140,6 +140,21 @@ class DisplayBase:
         else:
             j = int(np.argmin(margin))
             worst, wf = float(margin[j]), float(w[j])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rel = np.where(term > 0, margin / term, np.where(margin >= 0, 1.0, -np.inf))
+        rel = np.minimum(rel, 1.0)
+        if refine:
+
+            def rel_of(x: np.ndarray) -> np.ndarray:
+                t = self.coupling_term(x, a, b)
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    r = np.where(t > 0, 1.0 - self._uncached_bound(x) / t, -np.inf)
+                return np.minimum(r, 1.0)
+
+            rel_min, rel_f = self._worst(rel_of, w, rel)
+        else:
+            j = int(np.argmin(rel))
+            rel_min, rel_f = float(rel[j]), float(w[j])
         finite_eta = eta[np.isfinite(eta)]
         return StabilityResult(
             display=self.display,
@@ -159,6 +174,8 @@ class DisplayBase:
             b_min=b_min,
             apparent_mass=app_m,
             apparent_damping=app_b,
+            relative_margin=rel_min,
+            binding_frequency=rel_f,
         )
 
     @staticmethod

@@ -73,6 +73,8 @@ class StabilityResult:
     b_min: float
     apparent_mass: float
     apparent_damping: float
+    relative_margin: float = float("nan")
+    binding_frequency: float = float("nan")
 
 
 @dataclass(frozen=True)

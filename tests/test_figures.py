@@ -187,3 +187,20 @@ def test_lightly_damped_design_not_fooled_by_grid():
     ref_kc, ref_w = dense.dense_max_stiffness(imp, 100.0, points=200_000)
     assert d.kc <= ref_kc and rel(d.kc, ref_kc) < 1e-6
     assert math.isclose(d.frequency, ref_w, rel_tol=1e-4)
+
+
+def test_relative_margin_locates_the_binding_frequency(hbfd):
+    """The reserve 1 - bound/Re(1/Z_c) is smallest where eq. 9 binds (about 79 rad/s for the
+    HBFD), it shrinks to zero as k_c approaches the largest stable value, and it is negative
+    just above it; the absolute worst margin instead sits at the lower band edge."""
+    from analysis import ImpedanceDisplay
+
+    imp = ImpedanceDisplay(hbfd)
+    kmax = imp.max_stiffness(100.0).kc
+    r50 = imp.evaluate(50e3, 100.0)
+    assert abs(r50.binding_frequency - 80.3) < 1.0 and 0.7 < r50.relative_margin < 0.8
+    assert r50.worst_frequency == pytest.approx(hbfd.band_min)
+    near = imp.evaluate(kmax * (1 - 1e-6), 100.0)
+    assert 0 <= near.relative_margin < 1e-4 and abs(near.binding_frequency - 79.07) < 0.05
+    above = imp.evaluate(kmax * 1.01, 100.0)
+    assert above.relative_margin < 0 and not above.stable
