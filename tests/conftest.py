@@ -7,6 +7,9 @@ import sys
 
 import pytest
 
+# The suite is headless: Qt renders offscreen unless the caller asks for a real platform.
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+
 _HERE = os.path.dirname(os.path.abspath(__file__))
 for _p in (os.path.dirname(_HERE), _HERE):  # the repository root (analysis) and tests/ (reference, strategies)
     if _p not in sys.path:
