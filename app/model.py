@@ -17,7 +17,7 @@ from PySide6.QtCore import QObject, Signal
 from analysis import Device
 from analysis.profiles import Profile
 
-__all__ = ["DEVICE_FIELDS", "PROFILE_FIELDS", "VECTOR_FIELDS", "ALL_FIELDS", "ProfileModel"]
+__all__ = ["DEVICE_FIELDS", "PROFILE_FIELDS", "SECTION_FIELDS", "VECTOR_FIELDS", "ALL_FIELDS", "ProfileModel"]
 
 #: Fields of the device (``Device.replace`` keywords); ``"device"`` replaces the whole chain.
 DEVICE_FIELDS: tuple[str, ...] = (
@@ -31,7 +31,11 @@ DEVICE_FIELDS: tuple[str, ...] = (
     "device",
 )
 #: Fields of the profile itself (``Profile.replace`` keywords).
-PROFILE_FIELDS: tuple[str, ...] = ("name", "notes", "display", "kc", "bc", "mc", "bc_adm", "kp", "kd")
+PROFILE_FIELDS: tuple[str, ...] = ("name", "notes", "display", "kc", "bc", "mc", "bc_adm", "kp", "kd",
+                                   "wall", "observer", "simulation")
+#: Optional profile sections (schema 2 and 3); each is replaced as a whole settings object
+#: (``WallSettings``, ``ObserverSettings``, ``SimulationSection``) or ``None``.
+SECTION_FIELDS: tuple[str, ...] = ("wall", "observer", "simulation")
 VECTOR_FIELDS: tuple[str, ...] = ("masses", "stiffnesses", "dampings", "ground_dampings")
 ALL_FIELDS: tuple[str, ...] = DEVICE_FIELDS + PROFILE_FIELDS
 
