@@ -98,20 +98,29 @@ def test_eta_invariant_across_forms(dev, form):
     np.testing.assert_allclose(e_other[ok], e_y[ok], rtol=1e-6, atol=1e-9)
 
 
+def _seeded_extreme(rng: np.random.Generator, n_lo: int, n_hi: int, ground_at_actuator: bool) -> Device:
+    """A random device over the stress ranges, from a seeded generator (fixed samples)."""
+    n = int(rng.integers(n_lo, n_hi))
+    m = 10 ** rng.uniform(-4, 3, n)
+    k = 10 ** rng.uniform(0, 9, n - 1)
+    z = 10 ** rng.uniform(-5, 1, n - 1)
+    T = 10 ** rng.uniform(-5, -1)
+    g = np.zeros(n)
+    if ground_at_actuator:
+        g[-1] = 10 ** rng.uniform(-1, 2)
+    else:
+        g[int(rng.integers(0, n))] = 10 ** rng.uniform(-3, 3)
+    return Device.from_damping_ratios(m, k, z, ground_dampings=g, sample_time=T,
+                                      band_min=min(1.0, 0.1 * np.pi / T))
+
+
 def test_design_conservative_on_extreme_devices():
     """Largest k_c stays conservative against a dense check for extreme random devices."""
     rng = np.random.default_rng(7)
     checked = 0
     for _ in range(25):
-        n = int(rng.integers(2, 20))
-        m = 10 ** rng.uniform(-4, 3, n)
-        k = 10 ** rng.uniform(0, 9, n - 1)
-        z = 10 ** rng.uniform(-5, 1, n - 1)
-        T = 10 ** rng.uniform(-5, -1)
-        g = np.zeros(n)
-        g[-1] = 10 ** rng.uniform(-1, 2)
-        dev = Device.from_damping_ratios(m, k, z, ground_dampings=g, sample_time=T,
-                                         band_min=min(1.0, 0.1 * np.pi / T))
+        dev = _seeded_extreme(rng, 2, 20, ground_at_actuator=True)
+        n, T = dev.n, dev.sample_time
         imp = ImpedanceDisplay(dev)
         B = imp.bound(imp.frequencies())
         bc = 0.2 / float(B.max())
@@ -133,15 +142,8 @@ def test_mpmath_agreement_on_200_fixed_cases():
     rng = np.random.default_rng(2026)
     worst_hi = worst_lo = 0.0
     for case in range(200):
-        n = int(rng.integers(1, 7))
-        m = 10 ** rng.uniform(-4, 3, n)
-        k = 10 ** rng.uniform(0, 9, n - 1)
-        z = 10 ** rng.uniform(-5, 1, n - 1)
-        T = 10 ** rng.uniform(-5, -1)
-        g = np.zeros(n)
-        g[int(rng.integers(0, n))] = 10 ** rng.uniform(-3, 3)
-        dev = Device.from_damping_ratios(m, k, z, ground_dampings=g, sample_time=T,
-                                         band_min=min(1.0, 0.1 * np.pi / T))
+        dev = _seeded_extreme(rng, 1, 7, ground_at_actuator=False)
+        n, m, k = dev.n, dev.masses, dev.stiffnesses
         low = case % 2 == 1 or dev.nyquist * 0.999 <= 1.0
         lo = 1e-4 if low else 1.0
         x = float(np.exp(rng.uniform(np.log(lo), np.log(dev.nyquist * 0.999))))
