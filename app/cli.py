@@ -7,6 +7,10 @@ Usage::
     zwidth gui [PROFILE.json]     the same, spelt out
     zwidth analyze PROFILE [--json]
                                   print the analysis summary of a profile (never imports Qt)
+    zwidth design PROFILE [--display impedance|admittance] [--json]
+    zwidth export-plot PROFILE --plot bound|range|chart|... -o FILE.png|svg|csv
+    zwidth report PROFILE -o report.pdf|report.html [--page-size a4|letter]
+    zwidth bench [--quick]
 
 Exit codes: 0 success, 1 bad profile (or the GUI cannot start), 2 usage error.
 """
@@ -24,7 +28,15 @@ from pathlib import Path
 
 __all__ = ["main"]
 
-SUBCOMMANDS = ("analyze", "design", "gui", "bench")
+SUBCOMMANDS = ("analyze", "design", "gui", "bench", "export-plot", "report")
+
+#: ``--plot`` names of ``export-plot`` -> figure keys of :mod:`app.report.figures`
+PLOTS = {"bound": "bound", "range": "range", "chart": "chart", "transparency": "tradeoff_j",
+         "robustness": "tradeoff_l", "step": "step", "map": "map", "scenario-position": "scenario_position",
+         "scenario-force": "scenario_force"}
+#: the profile section each optional plot needs
+PLOT_SECTIONS = {"transparency": "wall", "robustness": "wall", "step": "wall", "map": "simulation",
+                 "scenario-position": "simulation", "scenario-force": "simulation"}
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -46,6 +58,26 @@ def _parser() -> argparse.ArgumentParser:
     bench.add_argument("--quick", action="store_true", help="short run (under a minute); writes nothing")
     bench.add_argument("--only", metavar="TEXT", help="only benchmark modules whose name contains TEXT")
     bench.add_argument("--write", action="store_true", help="write BENCHMARKS.md even with --quick")
+    export = sub.add_parser("export-plot", help="write one plot as PNG, SVG or CSV (headless)",
+                            description="Write one of the app's plots of a profile; the format comes from the "
+                            "extension of -o. transparency/robustness/step need a 'wall' section, map and "
+                            "scenario-* a 'simulation' section.")
+    export.add_argument("profile", metavar="PROFILE", help="profile JSON file")
+    export.add_argument("--plot", required=True, choices=tuple(PLOTS), help="which plot")
+    export.add_argument("-o", "--output", required=True, metavar="FILE", help="FILE.png, FILE.svg or FILE.csv")
+    export.add_argument("--width", type=int, metavar="PX", help="PNG width in pixels (default: from --dpi)")
+    export.add_argument("--height", type=int, metavar="PX", help="PNG height in pixels (default: keep aspect)")
+    export.add_argument("--dpi", type=float, default=150.0,
+                        help="PNG resolution for the default width (the plot is %.1f in wide; default 150)"
+                        % (658 / 96))
+    report = sub.add_parser("report", help="write the design report as PDF or HTML (headless)",
+                            description="Write the design report of a profile; the format comes from the "
+                            "extension of -o (.pdf or .html).")
+    report.add_argument("profile", metavar="PROFILE", help="profile JSON file")
+    report.add_argument("-o", "--output", required=True, metavar="FILE", help="report.pdf or report.html")
+    report.add_argument("--page-size", choices=("a4", "letter"), default="a4", help="PDF page size (default a4)")
+    report.add_argument("--no-sampled", action="store_true",
+                        help="leave out the sampled-data stability map and the scenario simulation")
     gui = sub.add_parser("gui", help="open the GUI (the default)")
     gui.add_argument("profile", metavar="PROFILE", nargs="?", help="profile JSON file (default: HBFD)")
     return parser
@@ -162,6 +194,100 @@ def _design(profile_path: str | Path, display: str | None, as_json: bool) -> int
     return 0
 
 
+# -- export-plot and report (headless Qt) -------------------------------------------------------
+
+
+def _usage(command: str, message: str) -> int:
+    print(f"usage: zwidth {command} ... (see zwidth {command} --help)\nzwidth {command}: error: {message}",
+          file=sys.stderr)
+    return 2
+
+
+def _headless() -> None:
+    """Render offscreen when there is no display (and the caller did not choose a platform)."""
+    if (not os.environ.get("QT_QPA_PLATFORM") and sys.platform.startswith("linux")
+            and not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY")):
+        os.environ["QT_QPA_PLATFORM"] = "offscreen"
+
+
+def _load_for_qt(profile_path: str | Path):
+    from analysis.profiles import ProfileError, load_profile
+
+    try:
+        return load_profile(profile_path), None
+    except ProfileError as err:
+        return None, _error(str(err))
+
+
+def _export_plot(args: argparse.Namespace) -> int:
+    fmt = Path(args.output).suffix.lower().lstrip(".")
+    if fmt not in ("png", "svg", "csv"):
+        return _usage("export-plot", f"-o {args.output}: the extension must be .png, .svg or .csv")
+    for opt in ("width", "height"):
+        value = getattr(args, opt)
+        if value is not None and not 16 <= value <= 20000:
+            return _usage("export-plot", f"--{opt} must be between 16 and 20000 pixels")
+    if not 10 <= args.dpi <= 2400:
+        return _usage("export-plot", "--dpi must be between 10 and 2400")
+    profile, code = _load_for_qt(args.profile)
+    if profile is None:
+        return code
+    section = PLOT_SECTIONS.get(args.plot)
+    if section and getattr(profile, section) is None:
+        return _error(f"{args.profile}: $.{section}: the '{args.plot}' plot needs this section, which the "
+                      "profile does not have")
+    _headless()
+    from analysis.errors import ValidationError
+
+    from app.report.content import gather
+    from app.report.figures import FIG_SIZE, ensure_app, make_view
+
+    ensure_app()
+    from app import export
+
+    try:
+        content = gather(profile, source=str(args.profile), sampled=section == "simulation")
+        fig = make_view(content, PLOTS[args.plot])
+    except ValidationError as err:
+        return _error(f"{args.profile}: {err}")
+    try:
+        if fmt == "png":
+            width = args.width or round(FIG_SIZE[0] / 96 * args.dpi)
+            export.export_png(fig.view, args.output, width, args.height)
+        elif fmt == "svg":
+            export.export_svg(fig.view, args.output)
+        else:
+            export.export_csv(fig.view, args.output)
+    except OSError as err:
+        return _error(str(err))
+    return 0
+
+
+def _report(args: argparse.Namespace) -> int:
+    from app.report import report_format
+
+    if report_format(args.output) is None:
+        return _usage("report", f"-o {args.output}: the extension must be .pdf or .html")
+    profile, code = _load_for_qt(args.profile)
+    if profile is None:
+        return code
+    _headless()
+    from analysis.errors import ValidationError
+
+    from app.report import build_report
+    from app.report.figures import ensure_app
+
+    ensure_app()
+    try:
+        build_report(profile, args.output, page_size=args.page_size, source=str(args.profile),
+                     sampled=not args.no_sampled)
+    except ValidationError as err:
+        return _error(f"{args.profile}: {err}")
+    except OSError as err:
+        return _error(f"cannot write {args.output}: {err}")
+    return 0
+
+
 # -- gui -----------------------------------------------------------------------------------------
 
 
@@ -215,6 +341,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _analyze(args.profile, args.json)
         if args.command == "design":
             return _design(args.profile, args.display, args.json)
+        if args.command == "export-plot":
+            return _export_plot(args)
+        if args.command == "report":
+            return _report(args)
         if args.command == "bench":
             from app.bench import run_bench
 

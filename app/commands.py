@@ -86,16 +86,32 @@ class Editor(QObject):
     """
 
     refused = Signal(str, str)  # field, reason
+    dragChanged = Signal(bool)  # a slider drag started (True) or the last one ended (False)
 
     def __init__(self, model: ProfileModel, stack: QUndoStack, parent: QObject | None = None) -> None:
         super().__init__(parent)
         self.model = model
         self.stack = stack
         self._drags = itertools.count(1)
+        self._active: set[int] = set()
 
     def new_drag(self) -> int:
-        """A fresh token for one slider drag."""
-        return next(self._drags)
+        """A fresh token for one slider drag (call :meth:`end_drag` with it on release)."""
+        token = next(self._drags)
+        self._active.add(token)
+        if len(self._active) == 1:
+            self.dragChanged.emit(True)
+        return token
+
+    def end_drag(self, token: int) -> None:
+        if token in self._active:
+            self._active.discard(token)
+            if not self._active:
+                self.dragChanged.emit(False)
+
+    @property
+    def dragging(self) -> bool:
+        return bool(self._active)
 
     def edit_many(self, changes: Mapping[str, object], text: str, drag: int | None = None) -> str | None:
         try:

@@ -79,6 +79,7 @@ class ComputeGraph(QObject):
         self.model = model
         self.runner = runner
         self._nodes: dict[str, Node] = {}
+        self._interactive = False
         model.fieldChanged.connect(self.invalidate)
         model.profileReplaced.connect(self.invalidate_all)
         runner.finished.connect(self._on_finished)
@@ -104,6 +105,26 @@ class ComputeGraph(QObject):
 
     def names(self) -> list[str]:
         return list(self._nodes)
+
+    # -- interaction ----------------------------------------------------------------------------
+    @property
+    def stability_name(self) -> str:
+        """The stability node views should pull now: the grid-only preview during a slider drag
+        (same curves, no refinement of the worst point), the refined result otherwise."""
+        return "stability_preview" if self._interactive and "stability_preview" in self._nodes else "stability"
+
+    @property
+    def interactive(self) -> bool:
+        return self._interactive
+
+    @Slot(bool)
+    def set_interactive(self, on: bool) -> None:
+        """A slider drag started or ended; at the end the refined results are pulled again."""
+        if on == self._interactive:
+            return
+        self._interactive = on
+        if not on and "stability" in self._nodes:
+            self.invalidated.emit({"stability"})
 
     # -- invalidation --------------------------------------------------------------------------
     @Slot(str)
@@ -237,6 +258,12 @@ def _stability(profile: Profile, pull: Pull) -> StabilityResult:
     return pull("admittance_display").evaluate(profile.mc, profile.bc_adm)
 
 
+def _stability_preview(profile: Profile, pull: Pull) -> StabilityResult:
+    if profile.display == "impedance":
+        return pull("impedance_display").evaluate(profile.kc, profile.bc, refine=False)
+    return pull("admittance_display").evaluate(profile.mc, profile.bc_adm, refine=False)
+
+
 def _max_stiffness(profile: Profile, pull: Pull) -> Any:
     return pull("impedance_display").max_stiffness(profile.bc)
 
@@ -296,6 +323,7 @@ def build_graph(model: ProfileModel, runner: TaskRunner, chart_points: int = 40)
     g.add(Node("admittance_display", _DEVICE | {"kp", "kd"}, lambda p, _: (p.device.key(), p.kp, p.kd),
                _admittance_display))
     g.add(Node("stability", _DEVICE | GAIN_FIELDS, _stability_key, _stability))
+    g.add(Node("stability_preview", _DEVICE | GAIN_FIELDS, _stability_key, _stability_preview))
     g.add(Node("max_stiffness", _DEVICE | {"bc"}, lambda p, _: (p.device.key(), p.bc), _max_stiffness))
     g.add(Node("design_chart", _DEVICE | {"display", "kp", "kd"}, _chart_key, _design_chart, asynchronous=True,
                params={"bc_range": (1.0, 1e4), "mc_range": (1e-3, 1e3), "points": chart_points}))

@@ -42,10 +42,7 @@ def _source(view: PlotView) -> QRectF:
 
 
 def _render(view: PlotView, painter: QPainter, target: QRectF) -> None:
-    pw = view.plot_widget
-    painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
-    painter.setRenderHint(QPainter.RenderHint.TextAntialiasing, True)
-    pw.render(painter, target, pw.viewport().rect())
+    view.render_into(painter, target)
 
 
 def export_png(view: PlotView, path: str | os.PathLike, width: int, height: int | None = None) -> QSize:

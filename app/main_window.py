@@ -102,6 +102,7 @@ class MainWindow(QMainWindow):
         self.statusBar().addPermanentWidget(self.progress)
         self._make_menus()
 
+        self.editor.dragChanged.connect(self.graph.set_interactive)
         self.graph.invalidated.connect(self._on_invalidated)
         self.graph.ready.connect(self._on_ready)
         self.graph.failed.connect(self._on_failed)
@@ -176,6 +177,8 @@ class MainWindow(QMainWindow):
             for fmt, label in (("png", "PNG image…"), ("svg", "SVG drawing…"), ("csv", "CSV data…")):
                 act = sub.addAction(label)
                 act.triggered.connect(lambda _=False, v=view, f=fmt: self.export_view(v, f))
+        from .report.action import export_report  # File → Export Report… (issue 6)
+        self.act_export_report = file.addAction("Export &Report…", lambda: export_report(self))
         file.addSeparator()
         file.addAction(self.act_quit)
 
@@ -228,7 +231,7 @@ class MainWindow(QMainWindow):
         """Update the verdict and the visible tab from the graph (hidden tabs stay stale)."""
         self._refresh_scheduled = False
         if self._verdict_stale:
-            self.verdict.update_result(self.graph.get("stability"))
+            self.verdict.update_result(self.graph.get(self.graph.stability_name))
             self._verdict_stale = False
         current = self.tabs.currentWidget()
         if isinstance(current, AnalysisTab) and current.stale:

@@ -19,7 +19,7 @@ import pytest
 
 import dense
 from analysis import ImpedanceDisplay
-from conftest import make_hbfd
+from hbfd_fixtures import make_hbfd
 
 RATIOS = [0.1, 1e-2, 1e-3, 1e-4]
 

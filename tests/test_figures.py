@@ -17,7 +17,7 @@ import dense
 import reference as ref
 from analysis import AdmittanceDisplay, ImpedanceDisplay
 from analysis.impedance import kc_upper
-from conftest import make_hbfd
+from hbfd_fixtures import make_hbfd
 
 
 @pytest.fixture(scope="module")

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import configparser
 import importlib.util
-import json
 import os
 import subprocess
 import sys
@@ -102,36 +101,21 @@ def test_frozen_selftest(frozen_exe: Path, tmp_path: Path) -> None:
 
 @needs_pyinstaller
 def test_frozen_report(frozen_exe: Path, tmp_path: Path) -> None:
-    """The build opens the bundled HBFD profile and writes a report (or the analyze --json summary)."""
+    """The build opens the bundled HBFD profile and writes its PDF and HTML reports."""
     profile = _internal(frozen_exe) / "resources" / "profiles" / "hbfd.json"
     assert profile.is_file()
     env = _frozen_env(tmp_path)
-    helped = subprocess.run([str(frozen_exe), "report", "--help"], env=env, capture_output=True,
-                            text=True, timeout=120)
-    if helped.returncode == 0:
-        out = tmp_path / "hbfd-report"
-        help_text = helped.stdout
-        if "--output" in help_text:
-            cmd, stdout_file = [str(frozen_exe), "report", str(profile), "--output", str(out)], None
-        elif " -o" in help_text:
-            cmd, stdout_file = [str(frozen_exe), "report", str(profile), "-o", str(out)], None
+    for name in ("hbfd-report.pdf", "hbfd-report.html"):
+        out = tmp_path / name
+        cmd = [str(frozen_exe), "report", str(profile), "--output", str(out), "--no-sampled"]
+        proc = subprocess.run(cmd, env=env, capture_output=True, timeout=300)
+        assert proc.returncode == 0, (cmd, proc.stdout.decode(errors="replace"), proc.stderr.decode(errors="replace"))
+        data = out.read_bytes()
+        if name.endswith(".pdf"):
+            assert data.startswith(b"%PDF-") and data.rstrip().endswith(b"%%EOF") and b"/Page" in data
         else:
-            cmd, stdout_file = [str(frozen_exe), "report", str(profile)], out
-    else:  # no report command yet: the JSON summary
-        out = tmp_path / "hbfd-summary.json"
-        cmd, stdout_file = [str(frozen_exe), "analyze", str(profile), "--json"], out
-    proc = subprocess.run(cmd, env=env, capture_output=True, timeout=300)
-    assert proc.returncode == 0, (cmd, proc.stdout.decode(errors="replace"), proc.stderr.decode(errors="replace"))
-    if stdout_file is not None:
-        stdout_file.write_bytes(proc.stdout)
-    if out.is_dir():  # a report folder
-        written = sorted(p for p in out.rglob("*") if p.is_file())
-    else:  # the file, or the file with an extension the command added
-        written = sorted(p for p in out.parent.glob(out.name + "*") if p.is_file())
-    assert written and all(p.stat().st_size > 0 for p in written), cmd
-    if helped.returncode != 0:
-        summary = json.loads(out.read_text())
-        assert summary, "empty summary"
+            text = data.decode()
+            assert "<html" in text.lower() and "HBFD" in text and "<svg" in text
 
 
 @needs_pyinstaller

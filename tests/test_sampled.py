@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import make_hbfd
+from hbfd_fixtures import make_hbfd
 from scipy import signal
 
 from analysis import AdmittanceDisplay, Device, ImpedanceDisplay

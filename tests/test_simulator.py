@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import make_hbfd
+from hbfd_fixtures import make_hbfd
 
 from analysis.sampled import (
     HANDS_OFF,

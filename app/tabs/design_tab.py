@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from PySide6.QtCore import Slot
+from PySide6.QtCore import QTimer, Slot
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
 from ..views.base import PlotView
@@ -20,6 +20,7 @@ class DesignTab(AnalysisTab):
     def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
         super().__init__(ctx, parent)
         self.chart = DesignChart()
+        self._shown: object = None
         hint = QLabel("Click the chart to set the coupling gains (one undo step).  The chart is conservative: "
                       "every point in the shaded region satisfies the two-port bound over the analysis band.")
         hint.setWordWrap(True)
@@ -33,21 +34,30 @@ class DesignTab(AnalysisTab):
 
     def refresh(self) -> None:
         graph = self.ctx.graph
-        value = graph.request("design_chart")
         fresh = graph.is_fresh("design_chart")
+        value = graph.node("design_chart").value
+        if not fresh:
+            # start the worker after this frame is painted: the first paint of the tab and a
+            # starting worker would otherwise compete for the GIL within one frame
+            QTimer.singleShot(20, self._request_chart)
         p = self.ctx.model.profile
-        if value is not None and value.display == p.display:
-            self.chart.update_chart(value)
-        elif value is not None:
-            self.chart.update_chart(None)
+        shown = value if value is not None and value.display == p.display else None
+        if shown is not self._shown:  # redraw the curves only when the chart itself changed
+            self.chart.update_chart(shown)
+            self._shown = shown
         self.chart.set_busy(not fresh)
-        stable = graph.get("stability").stable
+        stable = graph.get(graph.stability_name).stable
         if p.display == "impedance":
             self.chart.update_point(p.bc, p.kc, stable)
         else:
             self.chart.update_point(p.mc, p.bc_adm, stable)
         self.refreshes += 1
         self.stale = False
+
+    @Slot()
+    def _request_chart(self) -> None:
+        if self.isVisible() and not self.ctx.graph.is_fresh("design_chart"):
+            self.ctx.graph.request("design_chart")
 
     @Slot(str)
     def _on_ready(self, name: str) -> None:

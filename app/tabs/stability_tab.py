@@ -50,7 +50,10 @@ class StabilityTab(AnalysisTab):
             self.stale = True
 
     def refresh(self) -> None:
-        res = self.ctx.graph.get("stability")
+        graph = self.ctx.graph
+        res = graph.get(graph.stability_name)
+        for view in (self.stability, self.range):  # still axes during a drag: only the curves repaint
+            view.hold_range(graph.interactive)
         self.stability.update_result(res, self.log_y)
         self.range.update_result(res)
         self.refreshes += 1

@@ -7,9 +7,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import pyqtgraph as pg
-from PySide6.QtCore import QPointF, Qt, Signal, Slot
-from PySide6.QtGui import QAction, QColor, QFont
-from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
+from PySide6.QtCore import QPointF, QRectF, Qt, Signal, Slot
+from PySide6.QtGui import QAction, QColor, QFont, QPainter
+from PySide6.QtWidgets import QGraphicsItem, QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
 __all__ = ["PlotView", "Series", "clean_xy", "fmt", "PALETTE"]
 
@@ -67,6 +67,36 @@ def clean_xy(x: np.ndarray, y: np.ndarray, log_x: bool = False, log_y: bool = Fa
     return x[ok], y[ok], int(ok.size - np.count_nonzero(ok))
 
 
+_SUP = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def decade_label(exponent: int) -> str:
+    if -2 <= exponent <= 3:
+        return f"{10.0 ** exponent:g}"
+    return "10" + str(exponent).translate(_SUP)
+
+
+class LogAxis(pg.AxisItem):
+    """An axis whose log-mode labels are decades only (plus 2 and 5 when under two decades show)."""
+
+    def logTickStrings(self, values: list[float], scale: float, spacing: float) -> list[str]:  # noqa: N802
+        vals = np.asarray(values, float) + np.log10(scale)
+        span = float(vals.max() - vals.min()) if vals.size else 0.0
+        out = []
+        for v in vals:
+            e = round(v)
+            if abs(v - e) < 1e-6:
+                out.append(decade_label(int(e)))
+                continue
+            mant = 10.0 ** (v - np.floor(v))
+            if span < 2.0 and any(abs(mant - m) < 1e-6 for m in (2.0, 5.0)):
+                e = int(np.floor(v))
+                out.append(f"{10.0 ** v:g}" if -2 <= e <= 3 else f"{mant:.0f}·{decade_label(e)}")
+            else:
+                out.append("")
+        return out
+
+
 class PlotView(QWidget):
     """A titled pyqtgraph plot with a crosshair readout and a warning line.
 
@@ -95,7 +125,7 @@ class PlotView(QWidget):
         self.warning.setWordWrap(True)
         self.warning.setStyleSheet("color: #c77c02;")
         self.warning.hide()
-        self.plot_widget = pg.PlotWidget()
+        self.plot_widget = pg.PlotWidget(axisItems={"bottom": LogAxis("bottom"), "left": LogAxis("left")})
         self.plot_widget.setMinimumSize(300, 200)
         self.plot: pg.PlotItem = self.plot_widget.getPlotItem()
         self.plot.showGrid(x=True, y=True, alpha=0.25)
@@ -103,6 +133,8 @@ class PlotView(QWidget):
         self.plot.hideButtons()
         for ax in ("left", "bottom"):
             axis = self.plot.getAxis(ax)
+            # the axis (with its grid) is cached as a pixmap: a curve update does not replay its text
+            axis.setCacheMode(QGraphicsItem.CacheMode.DeviceCoordinateCache)
             axis.enableAutoSIPrefix(False)
             axis.setTickFont(QFont(self.font().family(), 9))
         self.legend = self.plot.addLegend(offset=(-10, 10), labelTextSize="9pt")
@@ -136,8 +168,35 @@ class PlotView(QWidget):
             menu.addAction(act)
         self.export_actions = menu.actions()[-3:]
 
+    def render_into(self, painter: QPainter, target: QRectF) -> None:
+        """Paint the plot into ``target`` of any painter (PNG, SVG, PDF), vector where it can be.
+
+        On screen the axes are cached as pixmaps and scatter markers come from a pixmap atlas; for
+        the length of this call both are switched off, so an SVG or PDF gets paths and text.
+        """
+        pw = self.plot_widget
+        items = pw.scene().items()
+        scatters = [it for it in items if isinstance(it, pg.ScatterPlotItem)]
+        cached = [(it, it.cacheMode()) for it in items if it.cacheMode() != QGraphicsItem.CacheMode.NoCache]
+        for it in scatters:
+            it.setExportMode(True, {"antialias": True})
+        for it, _mode in cached:
+            it.setCacheMode(QGraphicsItem.CacheMode.NoCache)
+        try:
+            painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
+            painter.setRenderHint(QPainter.RenderHint.TextAntialiasing, True)
+            pw.render(painter, target, pw.viewport().rect())
+        finally:
+            for it in scatters:
+                it.setExportMode(False)
+            for it, mode in cached:
+                it.setCacheMode(mode)
+
     # -- helpers for subclasses -----------------------------------------------------------------
     def set_axis_labels(self, x_name: str, x_unit: str, y_name: str, y_unit: str) -> None:
+        if (x_name, x_unit, y_name, y_unit) == (self.x_name, self.x_unit, self.y_name, self.y_unit) \
+                and self.plot.getAxis("left").labelText:
+            return  # relabelling re-lays out the plot: only when it changed
         self.x_name, self.x_unit, self.y_name, self.y_unit = x_name, x_unit, y_name, y_unit
         style = {"font-size": "10pt"}
         self.plot.setLabel("bottom", f"{x_name}  [{x_unit}]", **style)
@@ -150,8 +209,23 @@ class PlotView(QWidget):
         item.setDownsampling(auto=True, method="peak")
         return item
 
+    def set_legend_text(self, item: pg.GraphicsObject, text: str) -> None:
+        label = self.legend.getLabel(item)
+        if label is not None and label.text != text:
+            label.setText(text)
+
+    def hold_range(self, hold: bool) -> None:
+        """Keep the axes still (no auto-range) while a slider is dragged; auto-range again after."""
+        vb = self.plot.getViewBox()
+        if hold:
+            vb.disableAutoRange()
+        elif not all(vb.autoRangeEnabled()):
+            vb.enableAutoRange()
+
     def set_warning(self, messages: list[str]) -> None:
         text = "  ".join(f"⚠ {m}" for m in messages if m)
+        if text == self.warning.text():
+            return
         self.warning.setText(text)
         self.warning.setVisible(bool(text))
 
@@ -204,6 +278,8 @@ class PlotView(QWidget):
         self.legend.setBrush(pg.mkBrush(QColor(pal["bg"]).red(), QColor(pal["bg"]).green(),
                                         QColor(pal["bg"]).blue(), 210))
         self.legend.setPen(pg.mkPen(pal["muted"]))
+        for _sample, label in self.legend.items:
+            label.setText(label.text, color=pal["fg"])
         self.restyle(pal)
 
     def palette_colors(self) -> dict:

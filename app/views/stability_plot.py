@@ -75,9 +75,8 @@ class StabilityPlot(PlotView):
         eq = "eq. 9" if imp else "eq. 21"
         self.set_log(True, log_y)
         self.set_axis_labels("ω", "rad/s", f"|{term}|, |bound|" if log_y else f"{term}, bound", unit)
-        self.legend.getLabel(self.coupling_curve).setText(
-            "Re(1/Z<sub>c</sub>)" if imp else "Re(Z<sub>cA</sub>)")
-        self.legend.getLabel(self.bound_curve).setText(f"bound ({eq})")
+        self.set_legend_text(self.coupling_curve, "Re(1/Z<sub>c</sub>)" if imp else "Re(Z<sub>cA</sub>)")
+        self.set_legend_text(self.bound_curve, f"bound ({eq})")
 
         w = res.w
         c, b = np.asarray(res.coupling_term, float), np.asarray(res.bound, float)
@@ -109,7 +108,9 @@ class StabilityPlot(PlotView):
         wf, wm = res.worst_frequency, res.worst_margin
         if math.isfinite(wf) and wf > 0:
             self.worst_line.setPos(math.log10(wf))
-            self.worst_line.label.setFormat(f"worst: {plain(wf)} rad/s\nmargin {plain(wm, 3)} {unit}")
+            text = f"worst: {plain(wf)} rad/s\nmargin {plain(wm, 3)} {unit}"
+            if text != self.worst_line.label.format:
+                self.worst_line.label.setFormat(text)
             self.worst_line.show()
             yw = float(np.interp(math.log10(wf), np.log10(w), c)) if np.all(np.isfinite(c)) else math.nan
             if math.isfinite(yw) and (yw > 0 or not log_y):

@@ -45,10 +45,13 @@ class LogSliderField(QWidget):
         allow_zero: bool = False,
         tooltip: str = "",
         parent: QWidget | None = None,
+        end_drag: Callable[[int], None] | None = None,
     ) -> None:
         super().__init__(parent)
         self._model, self._fields = model, frozenset(fields)
         self._read, self._write, self._new_drag = read, write, new_drag
+        # the Editor's end_drag by default (new_drag is normally its bound method)
+        self._end_drag = end_drag or getattr(getattr(new_drag, "__self__", None), "end_drag", None)
         self._lo, self._hi, self._log, self._zero = lo, hi, log, allow_zero
         self._drag: int | None = None
         self._syncing = False
@@ -157,7 +160,9 @@ class LogSliderField(QWidget):
 
     @Slot()
     def _on_released(self) -> None:
-        self._drag = None
+        token, self._drag = self._drag, None
+        if token is not None and self._end_drag is not None:
+            self._end_drag(token)
 
     @Slot(int)
     def _on_slider(self, pos: int) -> None:

@@ -1,9 +1,13 @@
-"""Progress bar and Cancel button for the worker's jobs (shown in the status bar)."""
+"""Progress bar and Cancel button for the worker's jobs (a permanent status-bar widget).
+
+The widget keeps a fixed size and only swaps its contents, so a job starting or ending repaints
+this small area instead of re-laying out (and repainting) the whole window.
+"""
 
 from __future__ import annotations
 
 from PySide6.QtCore import Slot
-from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QWidget
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QSizePolicy, QWidget
 
 from ..compute_graph import ComputeGraph
 
@@ -25,23 +29,40 @@ class TaskProgress(QWidget):
         self.cancel_button.setToolTip("Stop the running computation (the last result stays)")
         lay = QHBoxLayout(self)
         lay.setContentsMargins(0, 0, 0, 0)
+        lay.addStretch(1)
         lay.addWidget(self.label)
         lay.addWidget(self.bar)
         lay.addWidget(self.cancel_button)
+        for w in (self.label, self.bar, self.cancel_button):
+            sp = w.sizePolicy()
+            sp.setRetainSizeWhenHidden(True)
+            w.setSizePolicy(sp)
+        self.label.setText(TASK_TITLES["design_chart"] + "…")
+        self.setFixedSize(self.sizeHint())
+        self.setSizePolicy(QSizePolicy.Policy.Fixed, QSizePolicy.Policy.Fixed)
         self.cancel_button.clicked.connect(self.cancel)
         graph.started.connect(self._on_started)
         graph.progress.connect(self._on_progress)
         graph.ready.connect(self._on_end)
         graph.failed.connect(lambda name, _msg: self._on_end(name))
         graph.cancelled.connect(self._on_end)
-        self.hide()
+        self._set_active(False)
+
+    @property
+    def active(self) -> bool:
+        """Whether a job is shown (the widget itself always stays in the status bar)."""
+        return self._name is not None
+
+    def _set_active(self, on: bool) -> None:
+        for w in (self.label, self.bar, self.cancel_button):
+            w.setVisible(on)
 
     @Slot(str)
     def _on_started(self, name: str) -> None:
         self._name = name
         self.label.setText(TASK_TITLES.get(name, name) + "…")
         self.bar.setRange(0, 0)  # busy until the first report
-        self.show()
+        self._set_active(True)
 
     @Slot(str, int, int)
     def _on_progress(self, name: str, done: int, total: int) -> None:
@@ -53,7 +74,7 @@ class TaskProgress(QWidget):
     def _on_end(self, name: str) -> None:
         if name == self._name:
             self._name = None
-            self.hide()
+            self._set_active(False)
 
     @Slot()
     def cancel(self) -> None:

@@ -1,0 +1,60 @@
+"""Design reports: PDF and HTML built from the analysis core and the app's own plot views.
+
+* :mod:`.content` gathers every number (Qt-free);
+* :mod:`.figures` draws them with the app's :class:`~app.views.base.PlotView` classes, offscreen;
+* :mod:`.pdf` and :mod:`.html` lay them out; :func:`build_report` picks by file extension;
+* :mod:`.action` is File → Export Report… in the app.
+"""
+
+from __future__ import annotations
+
+__all__ = ["build_report", "REPORT_FORMATS", "report_format"]
+
+REPORT_FORMATS = {"pdf": "PDF document (*.pdf)", "html": "HTML page (*.html *.htm)"}
+
+
+def report_format(path) -> str | None:
+    """``"pdf"``, ``"html"`` or ``None`` from the file name's extension."""
+    suffix = str(path).rsplit(".", 1)[-1].lower() if "." in str(path) else ""
+    return {"pdf": "pdf", "html": "html", "htm": "html"}.get(suffix)
+
+
+def build_report(profile, path, *, page_size: str = "a4", source: str | None = None, progress=None,
+                 sampled: bool = True) -> dict:
+    """Write the report of ``profile`` to ``path`` (format by extension); returns build info.
+
+    ``progress(step, total, text)`` is called between stages; returning ``False`` cancels
+    (raises :class:`ReportCancelled`).  Needs a ``QApplication`` (see :func:`.figures.ensure_app`).
+    """
+    import time
+
+    from .content import ReportCancelled, gather
+    from .figures import build_figures
+
+    fmt = report_format(path)
+    if fmt is None:
+        raise ValueError(f"{path}: the report format comes from the extension: .pdf or .html")
+    t0 = time.perf_counter()
+
+    def step(i: int, text: str) -> None:
+        if progress is not None and progress(i, 4, text) is False:
+            raise ReportCancelled("cancelled")
+
+    step(0, "Analysing the profile")
+    content = gather(profile, source=source, sampled=sampled)
+    step(1, "Drawing the figures")
+    figures = build_figures(content)
+    step(2, "Writing the " + fmt.upper())
+    if fmt == "pdf":
+        from .pdf import write_pdf
+
+        pages = write_pdf(content, figures, path, page_size=page_size)
+    else:
+        from .html import write_html
+
+        write_html(content, figures, path)
+        pages = None
+    step(4, "Done")
+    for fig in figures:
+        fig.view.deleteLater()
+    return {"format": fmt, "pages": pages, "seconds": time.perf_counter() - t0, "figures": len(figures)}

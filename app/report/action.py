@@ -1,0 +1,60 @@
+"""File → Export Report… in the main window: file dialog, progress dialog, build, message."""
+
+from __future__ import annotations
+
+import os
+
+from app import qt_compat  # noqa: F401 - before any Qt call
+
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QApplication, QFileDialog, QMessageBox, QProgressDialog, QWidget
+
+from . import REPORT_FORMATS, build_report, report_format
+from .content import ReportCancelled
+
+__all__ = ["export_report"]
+
+
+def export_report(window: QWidget, path: str | None = None, page_size: str = "a4") -> bool:
+    """Ask for a file (unless ``path``) and write the report of the window's current profile.
+
+    The format comes from the extension (.pdf or .html); progress is shown while it builds.
+    """
+    profile = window.model.profile
+    source = getattr(window, "path", None) or getattr(window, "_path", None)
+    if path is None:
+        stem = "".join(ch if ch.isalnum() or ch in "-_" else "-" for ch in profile.name).strip("-") or "report"
+        path, _ = QFileDialog.getSaveFileName(window, "Export Report", f"{stem}-report.pdf",
+                                              ";;".join(REPORT_FORMATS.values()))
+        if not path:
+            return False
+    if report_format(path) is None:
+        path += ".pdf"
+    dlg = QProgressDialog("Building the report…", "Cancel", 0, 4, window)
+    dlg.setWindowTitle("Export Report")
+    dlg.setWindowModality(Qt.WindowModality.WindowModal)
+    dlg.setMinimumDuration(0)
+    dlg.setValue(0)
+
+    def progress(step: int, total: int, text: str) -> bool:
+        dlg.setMaximum(total)
+        dlg.setLabelText(text + "…")
+        dlg.setValue(step)
+        QApplication.processEvents()
+        return not dlg.wasCanceled()
+
+    try:
+        build_report(profile, path, page_size=page_size, source=source if isinstance(source, str) else None,
+                     progress=progress)
+    except ReportCancelled:
+        return False
+    except Exception as err:  # noqa: BLE001 - shown to the user, never a crash of the app
+        dlg.close()
+        QMessageBox.warning(window, "Export Report", f"Could not write {os.path.basename(path)}:\n{err}")
+        return False
+    finally:
+        dlg.close()
+    status = getattr(window, "statusBar", None)
+    if callable(status):
+        status().showMessage(f"Report written to {path}", 5000)
+    return True

@@ -1,0 +1,309 @@
+"""The report's figures: the app's own plot views, fed with the report's results, offscreen.
+
+The bound plot, the impedance range plot and the design chart are the very
+:class:`~app.views.base.PlotView` classes of the main window.  The app has no view yet for
+the transparency curves, the sampled-data map and the scenario, so they are small
+:class:`PlotView` subclasses here, with the same axes, fonts and palette.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+from dataclasses import dataclass
+
+from app import qt_compat  # noqa: F401 - before any Qt call
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import QRectF, Qt, qInstallMessageHandler
+from PySide6.QtGui import QFont, QGuiApplication, QPainter
+from PySide6.QtWidgets import QApplication
+
+from ..compute_graph import ChartResult
+from ..views.base import PlotView, Series, clean_xy
+from ..views.design_chart import DesignChart
+from ..views.range_plot import RangePlot
+from ..views.stability_plot import StabilityPlot
+from .content import ReportContent, num
+
+__all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "CurvesPlot", "MapPlot"]
+
+#: size (px at 96 dpi) the views are laid out at; the PDF scales them to the text width
+FIG_SIZE = (658, 350)
+
+
+def ensure_app() -> QApplication:
+    """The running QApplication, or a new one (offscreen when there is no display)."""
+    app = QApplication.instance()
+    if app is None:
+        if (not os.environ.get("QT_QPA_PLATFORM") and sys.platform.startswith("linux")
+                and not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY")):
+            os.environ["QT_QPA_PLATFORM"] = "offscreen"
+        app = QApplication(sys.argv[:1])
+        if QGuiApplication.platformName() == "offscreen":
+            qInstallMessageHandler(_quiet)
+    return app
+
+
+def _quiet(mode, context, message: str) -> None:
+    """Drop the offscreen platform's "does not support propagateSizeHints()" noise; pass the rest on."""
+    if "propagateSizeHints" not in message:
+        sys.stderr.write(message + "\n")
+
+
+def _unhinted(view: PlotView) -> None:
+    """Lay text out with design metrics, as the PDF and SVG engines draw it (hinted screen metrics
+    are up to 15 % narrower at 9 pt, which would make legends overflow their boxes in print)."""
+    for item in view.plot_widget.scene().items():
+        if hasattr(item, "font") and hasattr(item, "setFont"):
+            try:
+                f = item.font()
+            except TypeError:
+                continue
+            f.setHintingPreference(QFont.HintingPreference.PreferNoHinting)
+            item.setFont(f)
+
+
+@dataclass
+class Figure:
+    key: str
+    title: str
+    caption: str
+    view: PlotView
+
+
+class CurvesPlot(PlotView):
+    """Named curves on shared axes (report figures the app has no view for)."""
+
+    def __init__(self, title: str, x: tuple[str, str], y: tuple[str, str], log_x: bool = False,
+                 log_y: bool = False) -> None:
+        super().__init__(title)
+        self.set_log(log_x, log_y)
+        self.set_axis_labels(x[0], x[1], y[0], y[1])
+        self._series: list[Series] = []
+
+    def add(self, name: str, x, y, color: str, style: Qt.PenStyle = Qt.PenStyle.SolidLine, width: float = 2.0,
+            symbol: str | None = None) -> None:
+        lx, ly = self.is_log()
+        xs, ys, _ = clean_xy(np.asarray(x, float), np.asarray(y, float), lx, ly)
+        if symbol:
+            item = pg.PlotDataItem(xs, ys, pen=None, symbol=symbol, symbolSize=10, symbolBrush=color,
+                                   symbolPen="w", name=name)
+            item.setZValue(20)
+            self.plot.addItem(item)
+        else:
+            item = self.curve(name, color, width, style)
+            item.setData(xs, ys)
+        self._series.append(Series(name, f"{self.x_name} ({self.x_unit})", f"{self.y_name} ({self.y_unit})", xs, ys))
+
+    def hline(self, y: float, label: str) -> None:
+        pos = math.log10(y) if self.is_log()[1] else y
+        line = pg.InfiniteLine(pos=pos, angle=0, movable=False,
+                               pen=pg.mkPen("#c92a2a", width=1, style=Qt.PenStyle.DotLine),
+                               label=label, labelOpts={"position": 0.08, "color": "#c92a2a"})
+        self.plot.addItem(line, ignoreBounds=True)
+
+    def export_series(self) -> list[Series]:
+        return list(self._series)
+
+
+class MapPlot(PlotView):
+    """A parameter map coloured by the spectral radius, on log axes, with the stable boundary."""
+
+    def __init__(self, title: str, x: tuple[str, str], y: tuple[str, str]) -> None:
+        super().__init__(title)
+        self.set_log(True, True)
+        self.set_axis_labels(x[0], x[1], y[0], y[1])
+        self._series: list[Series] = []
+
+    def set_map(self, xs: np.ndarray, ys: np.ndarray, rho: np.ndarray) -> None:
+        lx, ly = np.log10(xs), np.log10(ys)
+        dx = (lx[-1] - lx[0]) / max(lx.size - 1, 1)
+        dy = (ly[-1] - ly[0]) / max(ly.size - 1, 1)
+        shown = np.clip(np.nan_to_num(rho, nan=2.0), 0.8, 1.2)
+        cmap = pg.ColorMap([0.0, 0.499, 0.501, 1.0],
+                           [(43, 138, 62), (210, 235, 215), (250, 215, 215), (201, 42, 42)])
+        img = pg.ImageItem(shown.T, levels=(0.8, 1.2))
+        img.setLookupTable(cmap.getLookupTable(0.0, 1.0, 256))
+        img.setRect(QRectF(lx[0] - dx / 2, ly[0] - dy / 2, dx * lx.size, dy * ly.size))
+        img.setZValue(-20)
+        self.plot.addItem(img)
+        iso = pg.IsocurveItem(data=rho.T, level=1.0, pen=pg.mkPen("#222222", width=2))
+        iso.setParentItem(img)
+        # legend swatches
+        for name, color in (("stable (ρ &lt; 1)", (43, 138, 62)), ("unstable (ρ &gt; 1)", (201, 42, 42))):
+            sw = pg.PlotDataItem([], [], pen=None, symbol="s", symbolSize=12, symbolBrush=pg.mkBrush(color),
+                                symbolPen=None)
+            self.plot.addItem(sw)
+            self.legend.addItem(sw, name)
+        self.legend.addItem(pg.PlotDataItem([], [], pen=pg.mkPen("#222222", width=2)), "ρ = 1")
+        self.plot.getViewBox().setRange(xRange=(lx[0] - dx / 2, lx[-1] + dx / 2),
+                                        yRange=(ly[0] - dy / 2, ly[-1] + dy / 2), padding=0)
+        X, Y = np.meshgrid(xs, ys)
+        self._series = [Series("spectral radius", f"{self.x_name} ({self.x_unit})", "rho (-)",
+                               X.ravel(), rho.ravel()),
+                        Series("second parameter", f"{self.x_name} ({self.x_unit})",
+                               f"{self.y_name} ({self.y_unit})", X.ravel(), Y.ravel())]
+
+    def point(self, x: float, y: float, name: str) -> None:
+        item = pg.PlotDataItem([x], [y], pen=None, symbol="o", symbolSize=11, symbolBrush="#1f5fbf",
+                               symbolPen="w", name=name)
+        item.setZValue(20)
+        self.plot.addItem(item)
+
+    def export_series(self) -> list[Series]:
+        return list(self._series)
+
+
+def _prepare(view: PlotView, size: tuple[int, int] = FIG_SIZE) -> PlotView:
+    """Light theme, no header or warning line, laid out at ``size`` without appearing on screen."""
+    view.apply_theme(False)
+    for _sample, label in view.legend.items:  # legend text in the foreground colour, not pyqtgraph's grey
+        label.setText(label.text, color="#222222")
+    _unhinted(view)
+    view.header.hide()
+    view.cursor_label.hide()
+    view.warning.hide()
+    view.setAttribute(Qt.WidgetAttribute.WA_DontShowOnScreen, True)
+    view.resize(*size)
+    view.show()
+    QApplication.processEvents()
+    view.legend.anchor(itemPos=(1, 0), parentPos=(1, 0), offset=(-10, 10))  # re-anchor at the final size
+    QApplication.processEvents()
+    return view
+
+
+def render_plot(view: PlotView, painter: QPainter, target: QRectF) -> None:
+    """Paint the view's plot into ``target`` of any painter (PDF, SVG), everything as vectors."""
+    view.render_into(painter, target)
+
+
+def _notes(view: PlotView) -> str:
+    text = view.warning.text().replace("⚠ ", "")
+    return f" Note: {text}." if text else ""
+
+
+def make_view(content: ReportContent, key: str) -> Figure | None:
+    """One figure by key: ``bound``, ``range``, ``chart``, ``tradeoff_j``, ``tradeoff_l``, ``step``,
+    ``map``, ``scenario_position``, ``scenario_force``; ``None`` if the profile has no such data."""
+    ensure_app()
+    res = content.results
+    stab = res["stability"]
+    imp = stab.display == "impedance"
+    p = content.profile
+    if key == "bound":
+        v = StabilityPlot()
+        v.update_result(stab)
+        eq = "eq. 9" if imp else "eq. 21"
+        cap = (f"Coupling term against the stability bound ({eq}) over the band. Shaded: negative margin. "
+               f"Worst margin {num(stab.worst_margin)} at {num(stab.worst_frequency)} rad/s.")
+        fig = Figure(key, "Stability bound", cap, v)
+    elif key == "range":
+        v = RangePlot()
+        v.update_result(stab)
+        cap = (f"Impedance range: |Z<sub>min</sub>| to |Z<sub>max</sub>| (shaded); k<sub>max</sub> = "
+               f"{num(stab.k_max)} N/m, b<sub>min</sub> = {num(stab.b_min)} N&middot;s/m.")
+        fig = Figure(key, "Impedance range (Z-width)", cap, v)
+    elif key == "chart":
+        v = DesignChart()
+        kind, chart = res["chart"]
+        v.update_chart(ChartResult(kind, chart))
+        v.update_point(*res["chart_point"], stab.stable)
+        cap = ("Largest k<sub>c</sub> satisfying eq. 9 against b<sub>c</sub>; the dot is the profile's coupling."
+               if imp else "Feasible (m<sub>c</sub>, b<sub>c</sub>) region of eq. 21; the dot is the profile's "
+               "coupling.")
+        fig = Figure(key, "Design chart", cap, v)
+    elif key in ("tradeoff_j", "tradeoff_l"):
+        tc = res.get("tradeoff")
+        if tc is None:
+            return None
+        best = res["optimum"]
+        if key == "tradeoff_j":
+            v = CurvesPlot("Transparency index", ("B_c", "N·s/m"), ("J", "–"), log_y=True)
+            v.add("J (eq. 10–11)", tc.bc, tc.index, "#1f5fbf")
+            if math.isfinite(best.bc):
+                v.add("optimum", [best.bc], [best.index], "#c92a2a", symbol="o")
+            cap = (f"Transparency index J against the controller damping B<sub>c</sub>; optimum B<sub>c</sub> = "
+                   f"{num(best.bc)} N&middot;s/m, J = {num(best.index)}.")
+            fig = Figure(key, "Transparency index", cap, v)
+        else:
+            v = CurvesPlot("Robust stability", ("B_c", "N·s/m"), ("‖L‖∞", "–"))
+            v.add("‖L‖∞ (eq. 16)", tc.bc, tc.peak, "#d9480f")
+            v.hline(1.0, "limit ‖L‖∞ = 1 (eq. 17)")
+            if math.isfinite(best.bc):
+                v.add("optimum", [best.bc], [best.peak], "#c92a2a", symbol="o")
+            cap = (f"Robustness peak &#8214;L&#8214;<sub>&infin;</sub> against B<sub>c</sub> "
+                   f"(&alpha; = {num(tc.alpha)}, &beta; = {num(tc.beta)}); stable for every weighted "
+                   "uncertainty below the line.")
+            fig = Figure(key, "Robust stability", cap, v)
+    elif key == "step":
+        sr = res.get("step")
+        if sr is None:
+            return None
+        v = CurvesPlot("Step response", ("t", "s"), ("x", "mm"))
+        v.add("handle position", sr.t, sr.position * 1e3, "#1f5fbf")
+        v.add("ideal virtual wall", sr.t, sr.wall_position * 1e3, "#868e96", style=Qt.PenStyle.DashLine)
+        cap = (f"Handle position for a {num(sr.human_force[0])} N force step on the exact sampled loop, "
+               f"B<sub>c</sub> = {num(sr.bc)} N&middot;s/m, against the ideal wall.")
+        fig = Figure(key, "Virtual wall step response", cap, v)
+    elif key == "map":
+        smap = res.get("map")
+        if smap is None:
+            return None
+        names = {"bc": ("b_c", "N·s/m"), "kc": ("k_c", "N/m"), "mc": ("m_c", "kg")}
+        v = MapPlot("Sampled-data stability map", names[smap.x_name], names[smap.y_name])
+        v.set_map(np.asarray(smap.x), np.asarray(smap.y), np.asarray(smap.spectral_radius))
+        if imp:
+            kind, chart = res["chart"]
+            kc = np.asarray(chart.kc, float)
+            ok = np.isfinite(kc) & (kc > 0)
+            xs = np.asarray(chart.bc)[ok]
+            inside = (xs >= smap.x[0]) & (xs <= smap.x[-1])
+            if inside.any():
+                item = v.curve("largest k<sub>c</sub>, two-port (eq. 9)", "#1f5fbf", 2.0, Qt.PenStyle.DashLine)
+                item.setData(xs[inside], kc[ok][inside])
+        v.point(*res["map_point"], "profile's coupling")
+        term = ("hands-off, rigid penalty wall" if imp else "rigid grasp, free motion")
+        cap = (f"Spectral radius &rho; of the exact sampled closed loop ({term}); "
+               f"{len(smap.x)}&times;{len(smap.y)} grid, the black line is &rho; = 1.")
+        fig = Figure(key, "Sampled-data stability map", cap, v)
+    elif key in ("scenario_position", "scenario_force"):
+        out = res.get("simulation")
+        if out is None:
+            return None
+        name = p.simulation.scenario.name if p.simulation else ""
+        if key == "scenario_position":
+            v = CurvesPlot("Scenario: position", ("t", "s"), ("x", "mm"))
+            v.add("handle", out.t, out.positions[:, 0] * 1e3, "#1f5fbf")
+            v.add("environment", out.t, np.asarray(out.x_e, float) * 1e3, "#868e96", style=Qt.PenStyle.DashLine)
+            cap = (f"Scenario &ldquo;{name}&rdquo;: handle and environment positions. Verdict: "
+                   f"{out.verdict.kind} ({out.verdict.reason}).")
+            fig = Figure(key, "Scenario time response: position", cap, v)
+        else:
+            v = CurvesPlot("Scenario: forces", ("t", "s"), ("F", "N"))
+            v.add("actuator F_d", out.t, out.f_d, "#1f5fbf")
+            v.add("human F_h", out.t, out.f_h, "#2b8a3e", style=Qt.PenStyle.DashLine)
+            v.add("environment F_e", out.t, out.f_e, "#d9480f", width=1.2)
+            cap = f"Scenario &ldquo;{name}&rdquo;: actuator, human and environment forces."
+            fig = Figure(key, "Scenario time response: forces", cap, v)
+    else:
+        raise ValueError(f"unknown plot {key!r}")
+    _prepare(fig.view)
+    fig.caption += _notes(fig.view)
+    return fig
+
+
+FIGURE_KEYS = ("bound", "range", "chart", "tradeoff_j", "tradeoff_l", "step", "map", "scenario_position",
+               "scenario_force")
+
+
+def build_figures(content: ReportContent) -> list[Figure]:
+    out = []
+    for key in FIGURE_KEYS:
+        fig = make_view(content, key)
+        if fig is not None:
+            out.append(fig)
+    return out
+

@@ -1,0 +1,158 @@
+"""The exact sampled-data limit overlaid on the two-port design chart.
+
+Impedance display: largest stable k_c against b_c -- the two-port bound (eq. 9, conservative
+over every passive termination) and the exact limit of the sampled loop (hands-off against a
+rigid god-object wall, with the chosen computation delay).  Admittance display: the two-port
+feasible (m_c, b_c) edges and the exact smallest stable m_c against b_c (rigid grasp, free motion).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QWidget
+
+from analysis.sampled import CriticalChart, CriticalMassChart
+
+from ..compute_graph import ChartResult
+from .base import PlotView, Series, clean_xy, plain
+
+__all__ = ["ExactLimitChart"]
+
+
+class ExactLimitChart(PlotView):
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__("Exact limit vs two-port bound", parent)
+        self.set_log(True, True)
+        self.display = "impedance"
+        self.bound = self.curve("two-port bound (eq. 9)", "#1f5fbf", 2.0, Qt.PenStyle.DashLine)
+        self.bound_low = self.curve(None, "#1f5fbf", 2.0, Qt.PenStyle.DashLine)
+        self.exact = self.curve("exact sampled limit", "#d9480f", 2.5)
+        self.exact.setSymbol("o")
+        self.exact.setSymbolSize(5)
+        self.exact.setSymbolBrush("#d9480f")
+        self.exact.setSymbolPen(None)
+        self.point = pg.PlotDataItem([], [], pen=None, symbol="o", symbolSize=12, symbolBrush="#c92a2a",
+                                     symbolPen=pg.mkPen("w", width=1.5), name="current gains")
+        self.point.setZValue(20)
+        self.plot.addItem(self.point)
+        self.legend.setOffset((-10, -10))  # bottom right, below the curves
+        self.chart: CriticalChart | CriticalMassChart | None = None
+        self._bound_series: list[Series] = []
+        self._exact_series: list[Series] = []
+        self._notes: dict[str, list[str]] = {"bound": [], "exact": []}
+        self._point_note = ""
+        self.set_axis_labels("b_c", "N·s/m", "k_c", "N/m")
+        self.cursor_label.setMinimumWidth(0)
+        self.plot_widget.setMinimumSize(240, 180)
+
+    def set_busy(self, busy: bool, text: str = "") -> None:
+        self.header.setText(f"<b>{self.title}</b>" + (f"  <i>({text or 'updating…'})</i>" if busy else ""))
+
+    def _set_display(self, display: str) -> None:
+        self.display = display
+        if display == "impedance":
+            self.set_axis_labels("b_c", "N·s/m", "k_c", "N/m")
+            self.title = "Largest stable k_c: exact sampled loop vs two-port bound"
+        else:
+            self.set_axis_labels("m_c", "kg", "b_c", "N·s/m")
+            self.title = "Admittance (m_c, b_c): exact smallest m_c vs two-port region"
+
+    def update_bound(self, res: ChartResult | None) -> None:
+        """The two-port design chart (the ``design_chart`` node's value)."""
+        notes: list[str] = []
+        if res is None:
+            self.bound.setData([], [])
+            self.bound_low.setData([], [])
+            self._bound_series = []
+        elif res.display == "impedance":
+            ch = res.chart
+            kc = np.asarray(ch.kc, float)
+            if np.any(np.isinf(kc)):
+                notes.append("two-port bound unlimited at some b_c (not drawn)")
+            x, y, _ = clean_xy(ch.bc, kc, True, True)
+            self.bound.setData(x, y)
+            self.bound_low.setData([], [])
+            self._bound_series = [Series("two-port largest k_c", "b_c (N s/m)", "k_c (N/m)", x, y)]
+        else:
+            ch = res.chart
+            xl, yl, _ = clean_xy(ch.mc, ch.low, True, True)
+            xh, yh, _ = clean_xy(ch.mc, ch.high, True, True)
+            self.bound.setData(xh, yh)
+            self.bound_low.setData(xl, yl)
+            self._bound_series = [Series("two-port b_c high", "m_c (kg)", "b_c (N s/m)", xh, yh),
+                                  Series("two-port b_c low", "m_c (kg)", "b_c (N s/m)", xl, yl)]
+        self._notes["bound"] = notes
+        self._refresh_warning()
+        self.bump()
+
+    def update_exact(self, chart: CriticalChart | CriticalMassChart | None, display: str) -> None:
+        self._set_display(display)
+        self.chart = chart
+        notes: list[str] = []
+        if chart is None:
+            self.exact.setData([], [])
+            self._exact_series = []
+        elif isinstance(chart, CriticalChart):
+            kc = np.asarray(chart.kc, float)
+            bc = np.asarray(chart.bc, float)
+            if np.any(kc == 0):
+                notes.append(f"exact: unstable for every k_c at b_c ≥ {plain(float(bc[kc == 0].min()))} N·s/m "
+                             "(the virtual damper alone destabilizes the loop; not drawn)")
+            if np.any(np.isinf(kc)):
+                notes.append("exact: no instability up to 10⁹ N/m at some b_c (not drawn)")
+            x, y, _ = clean_xy(bc, kc, True, True)
+            self.exact.setData(x, y)
+            self._exact_series = [Series(f"exact largest k_c (delay {chart.delay_samples})", "b_c (N s/m)",
+                                         "k_c (N/m)", x, y)]
+        else:
+            mc = np.asarray(chart.mc, float)
+            bc = np.asarray(chart.bc, float)
+            if np.any(np.isinf(mc)):
+                notes.append(f"exact: no stable m_c at b_c = {plain(float(bc[np.isinf(mc)].min()))} N·s/m and "
+                             "similar (not drawn)")
+            if np.any(mc == 0):
+                notes.append("exact: every m_c ≥ 1 g stable at some b_c (not drawn)")
+            x, y, _ = clean_xy(mc, bc, True, True)
+            self.exact.setData(x, y)
+            self._exact_series = [Series(f"exact smallest m_c (delay {chart.delay_samples})", "m_c (kg)",
+                                         "b_c (N s/m)", x, y)]
+        label = "two-port bound (eq. 9)" if display == "impedance" else "two-port b_c edges (eq. 21)"
+        self.legend.getLabel(self.bound).setText(label)
+        self._notes["exact"] = notes
+        self.header.setText(f"<b>{self.title}</b>")
+        self._refresh_warning()
+        self.bump()
+
+    def update_point(self, x: float, y: float, stable: bool | None) -> None:
+        self._point_note = ""
+        if x > 0 and y > 0 and math.isfinite(x) and math.isfinite(y):
+            self.point.setData([x], [y])
+        else:
+            self.point.setData([], [])
+            self._point_note = "current gains not drawn (zero on a log axis)"
+        pal = self.palette_colors()
+        self.point.setSymbolBrush(pal["c"] if stable else pal["mark"])
+        self._refresh_warning()
+        self.bump()
+
+    def _refresh_warning(self) -> None:
+        self.set_warning([*self._notes["bound"], *self._notes["exact"], self._point_note])
+
+    def restyle(self, pal: dict) -> None:
+        for c in (self.bound, self.bound_low):
+            c.setPen(pg.mkPen(pal["a"], width=2, style=Qt.PenStyle.DashLine))
+        self.exact.setPen(pg.mkPen(pal["b"], width=2.5))
+        self.exact.setSymbolBrush(pal["b"])
+        self.point.setSymbolPen(pg.mkPen(pal["bg"], width=1.5))
+
+    def export_series(self) -> list[Series]:
+        rows = [*self._bound_series, *self._exact_series]
+        pts = self.point.getData()
+        if pts[0] is not None and len(pts[0]):
+            xl, yl = (("b_c (N s/m)", "k_c (N/m)") if self.display == "impedance" else ("m_c (kg)", "b_c (N s/m)"))
+            rows.append(Series("current gains", xl, yl, np.asarray(pts[0]), np.asarray(pts[1])))
+        return rows

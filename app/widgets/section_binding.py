@@ -1,0 +1,46 @@
+"""Read and write one parameter of an optional profile section (``wall``, ``observer``).
+
+A section that is ``None`` reads as its defaults; the first edit creates it, through the same undo
+command as any other edit (so undoing it restores ``None``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from analysis import ValidationError
+
+from ..commands import Editor, describe_error
+from ..model import ProfileModel
+
+__all__ = ["SectionBinding"]
+
+
+class SectionBinding:
+    """``section`` is the profile field, ``factory`` builds its defaults (e.g. ``WallSettings``)."""
+
+    def __init__(self, model: ProfileModel, editor: Editor, section: str, factory: Callable[[], object],
+                 title: str) -> None:
+        self.model, self.editor, self.section, self.factory, self.title = model, editor, section, factory, title
+
+    def current(self, model: ProfileModel | None = None):
+        value = (model or self.model).get(self.section)
+        return self.factory() if value is None else value
+
+    def reader(self, name: str) -> Callable[[ProfileModel], object]:
+        return lambda m: getattr(self.current(m), name)
+
+    def write(self, name: str, value: object, label: str, drag: int | None = None) -> str | None:
+        try:
+            new = self.current().replace(**{name: value})
+        except (ValidationError, TypeError, ValueError) as err:
+            reason = describe_error(err)
+            self.editor.refused.emit(self.section, reason)
+            return reason
+        if self.model.get(self.section) is not None and new == self.model.get(self.section):
+            return None
+        return self.editor.edit_many({self.section: new}, f"Set {self.title} {label}", drag)
+
+    def writer(self, name: str, label: str) -> Callable[..., str | None]:
+        """For LogSliderField (``value, drag``) and the choice fields (``value``)."""
+        return lambda value, drag=None: self.write(name, value, label, drag)

@@ -1,0 +1,208 @@
+"""Design reports (issue 6): both formats for every bundled profile, their text, figures and numbers."""
+
+from __future__ import annotations
+
+import math
+import re
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("PySide6")
+pypdf = pytest.importorskip("pypdf")
+
+from analysis import AdmittanceDisplay, ImpedanceDisplay  # noqa: E402
+from analysis.profiles import bundled_profiles, load_profile  # noqa: E402
+from analysis.summary import summarize  # noqa: E402
+
+PROFILES = sorted(bundled_profiles().items())
+IDS = [name for name, _ in PROFILES]
+
+
+@pytest.fixture(scope="module")
+def app():
+    from app.report.figures import ensure_app
+
+    return ensure_app()
+
+
+@pytest.fixture(scope="module")
+def built(app, tmp_path_factory):
+    """{name: (content, pdf path, pages, html path)} for every bundled profile."""
+    from app.report import build_report
+    from app.report.content import gather
+
+    out = {}
+    tmp = tmp_path_factory.mktemp("reports")
+    for name, path in PROFILES:
+        profile = load_profile(path)
+        pdf, page = tmp / f"{name}.pdf", tmp / f"{name}.html"
+        info = build_report(profile, pdf, source=str(path))
+        assert build_report(profile, page, source=str(path))["format"] == "html"
+        out[name] = (gather(profile, source=str(path)), pdf, info, page)
+    return out
+
+
+def _pdf_text(path: Path) -> tuple[int, str]:
+    reader = pypdf.PdfReader(str(path))
+    return len(reader.pages), "\n".join(p.extract_text() for p in reader.pages)
+
+
+def _flat(text: str) -> str:
+    return re.sub(r"\s+", " ", text)
+
+
+def _expected_pages(profile) -> int:
+    # 2 pages of text, then 2 figures a page, methods sharing the last figure page when it fits
+    n_figs = 3 + (3 if profile.wall is not None else 0) + (3 if profile.simulation is not None else 0)
+    return {3: 4, 6: 6}[n_figs]
+
+
+@pytest.mark.parametrize("name", IDS)
+def test_pdf_pages_and_text(built, name):
+    content, pdf, info, _ = built[name]
+    profile = content.profile
+    pages, text = _pdf_text(pdf)
+    assert pages == info["pages"] == _expected_pages(profile)
+    flat = _flat(text)
+    assert "Haptic interface design report" in flat
+    assert profile.name in flat
+    assert f"Page {pages} of {pages}" in flat and "Page 1 of" in flat
+    for heading in ("Device", "Sampling and analysis band", "Display and controller", "Verdict",
+                    "Design results", "Impedance range (Z-width)", "Figures", "Methods"):
+        assert heading in flat, heading
+    assert "Adams, Moreyra & Hannaford" in flat and "Eom, Suh & Yi" in flat
+    assert "Stability and Performance of Haptic Displays" in flat
+    for key, (_value, printed) in content.numbers.items():
+        assert printed in flat, (key, printed)
+    assert f"zwidth {content.version}" in flat
+
+
+@pytest.mark.parametrize("name", IDS)
+def test_report_numbers_equal_analysis(built, name):
+    content = built[name][0]
+    p = content.profile
+    s = summarize(p)
+    from app.report.content import num
+
+    if p.display == "impedance":
+        r = ImpedanceDisplay(p.device).evaluate(p.kc, p.bc)
+        assert content.printed("design.kc_max") == num(s["impedance"]["design"]["kc_max"])
+        assert content.printed("design.frequency") == num(s["impedance"]["design"]["frequency"])
+    else:
+        r = AdmittanceDisplay(p.device, p.kp, p.kd).evaluate(p.mc, p.bc_adm)
+    expected = {
+        "verdict.worst_margin": r.worst_margin, "verdict.worst_frequency": r.worst_frequency,
+        "verdict.relative_margin": r.relative_margin, "verdict.binding_frequency": r.binding_frequency,
+        "verdict.min_eta": r.min_eta, "range.k_max": r.k_max, "range.b_min": r.b_min,
+        "range.apparent_mass": r.apparent_mass, "range.apparent_damping": r.apparent_damping,
+        "sample_time": p.device.sample_time, "band.max": p.device.nyquist,
+    }
+    for key, value in expected.items():
+        got, printed = content.numbers[key]
+        assert printed == num(value), key
+        assert got == pytest.approx(value, rel=1e-12) or (math.isnan(got) and math.isnan(value)), key
+    assert content.printed("verdict.stable") == ("yes" if r.stable else "no")
+    for i, m in enumerate(p.device.masses):
+        assert content.printed(f"device.mass[{i}]") == num(m)
+    if p.wall is not None:
+        from analysis.transparency import WallDesign
+
+        best = WallDesign.from_settings(p.wall).optimal_damping()
+        assert content.printed("wall.optimum.bc") == num(best.bc)
+
+
+class _Collect(HTMLParser):
+    def __init__(self) -> None:
+        super().__init__()
+        self.tags: list[str] = []
+        self.refs: list[str] = []
+        self.svg_in_figure = 0
+        self._figure = 0
+
+    def handle_starttag(self, tag, attrs):
+        self.tags.append(tag)
+        if tag == "figure":
+            self._figure += 1
+        if tag == "svg" and self._figure:
+            self.svg_in_figure += 1
+        for k, v in attrs:
+            if k in ("src", "href", "xlink:href") and v and not v.startswith(("#", "data:")):
+                self.refs.append(v)
+        if tag == "link":
+            self.refs.append(dict(attrs).get("href", "link"))
+
+    def handle_endtag(self, tag):
+        if tag == "figure":
+            self._figure -= 1
+
+
+@pytest.mark.parametrize("name", IDS)
+def test_html_self_contained(built, name):
+    content, _pdf, info, page = built[name]
+    text = page.read_text(encoding="utf-8")
+    parser = _Collect()
+    parser.feed(text)
+    parser.close()
+    n_figs = info["figures"]
+    assert parser.tags.count("figure") == n_figs
+    assert parser.svg_in_figure == n_figs
+    assert parser.refs == []
+    assert "<script" not in text and "<style>" in text
+    ids = re.findall(r'\bid="([^"]+)"', text)
+    assert len(ids) == len(set(ids)), "duplicate ids between inline SVGs"
+    plain = _flat(re.sub(r"<[^>]+>", " ", re.sub(r"<svg.*?</svg>", " ", text, flags=re.S)))
+    for key, (_value, printed) in content.numbers.items():
+        assert printed in plain, (key, printed)
+
+
+def test_letter_size_and_bad_extension(app, tmp_path):
+    from app.report import build_report
+
+    profile = load_profile(bundled_profiles()["rigid"])
+    out = tmp_path / "r.pdf"
+    build_report(profile, out, page_size="letter")
+    box = pypdf.PdfReader(str(out)).pages[0].mediabox
+    assert (round(float(box.width)), round(float(box.height))) == (612, 792)
+    build_report(profile, out, page_size="a4")
+    box = pypdf.PdfReader(str(out)).pages[0].mediabox
+    assert (round(float(box.width)), round(float(box.height))) == (595, 842)
+    with pytest.raises(ValueError):
+        build_report(profile, tmp_path / "r.docx")
+
+
+def test_figures_are_the_app_views(built, app):
+    from app.report.figures import build_figures
+    from app.views.design_chart import DesignChart
+    from app.views.range_plot import RangePlot
+    from app.views.stability_plot import StabilityPlot
+
+    figs = build_figures(built["hbfd"][0])
+    kinds = {f.key: type(f.view) for f in figs}
+    assert kinds["bound"] is StabilityPlot and kinds["range"] is RangePlot and kinds["chart"] is DesignChart
+    assert {"map", "scenario_position", "scenario_force"} <= set(kinds)
+
+
+def test_pdf_plots_are_vector(built):
+    _content, pdf, _info, _ = built["rigid"]
+    reader = pypdf.PdfReader(str(pdf))
+    figure_page = reader.pages[2]
+    assert not figure_page.images  # curves, axes and text as vector paths and text
+    assert "rad/s" in figure_page.extract_text()
+
+
+def test_export_report_action(app, tmp_path, monkeypatch):
+    from app.main_window import MainWindow
+
+    win = MainWindow()
+    try:
+        assert win.act_export_report.text().startswith("Export")
+        out = tmp_path / "from-app.html"
+        from app.report.action import export_report
+
+        assert export_report(win, str(out))
+        assert out.read_text(encoding="utf-8").count("<svg") >= 3
+    finally:
+        win.close()
+        win.deleteLater()
