@@ -61,6 +61,9 @@ class MainWindow(QMainWindow):
     def __init__(self, settings: Settings | None = None, profile: Profile | None = None,
                  chart_points: int = 40) -> None:
         super().__init__()
+        from .about import app_icon
+
+        self.setWindowIcon(app_icon())
         self.settings = settings if settings is not None else Settings()
         self.path: str | None = None
         self.preset: str | None = "hbfd" if profile is None else None
@@ -512,9 +515,9 @@ class MainWindow(QMainWindow):
         event.accept()
 
     def _about(self) -> None:
-        QMessageBox.about(self, "About zwidth",
-                          "<b>zwidth</b> — design tool for stable haptic interfaces.<br>"
-                          "Two-port stability and Z-width after Adams, Moreyra &amp; Hannaford.")
+        from .about import show_about
+
+        show_about(self)
 
 
 def _palette(dark: bool) -> QPalette:
@@ -554,6 +557,10 @@ def make_application(argv: list[str] | None = None) -> QApplication:
     app.setOrganizationName(APP_NAME)
     app.setApplicationName(APP_NAME)
     app.setStyle("Fusion")
+    from .about import app_icon
+
+    app.setDesktopFileName("zwidth")  # matches packaging/zwidth.desktop (window grouping, icon)
+    app.setWindowIcon(app_icon())
     return app
 
 

@@ -7,10 +7,9 @@ import re
 from html.parser import HTMLParser
 from pathlib import Path
 
+import PySide6  # noqa: F401 - the reports need Qt: fail loudly, never skip
+import pypdf
 import pytest
-
-pytest.importorskip("PySide6")
-pypdf = pytest.importorskip("pypdf")
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay  # noqa: E402
 from analysis.profiles import bundled_profiles, load_profile  # noqa: E402

@@ -117,16 +117,18 @@ class PlotView(QWidget):
         self._dark = False
         self._log_x = self._log_y = False
         self.header = QLabel(f"<b>{title}</b>")
+        self.header.setMinimumWidth(40)  # a long title is cut in a narrow window, it does not widen it
+        self.header.setToolTip(title)
         self.cursor_label = QLabel("")
         self.cursor_label.setAlignment(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
-        self.cursor_label.setMinimumWidth(260)
+        self.cursor_label.setMinimumWidth(120)
         self.cursor_label.setStyleSheet("color: palette(mid); font-family: monospace;")
         self.warning = QLabel("")
         self.warning.setWordWrap(True)
         self.warning.setStyleSheet("color: #c77c02;")
         self.warning.hide()
         self.plot_widget = pg.PlotWidget(axisItems={"bottom": LogAxis("bottom"), "left": LogAxis("left")})
-        self.plot_widget.setMinimumSize(300, 200)
+        self.plot_widget.setMinimumSize(200, 160)
         self.plot: pg.PlotItem = self.plot_widget.getPlotItem()
         self.plot.showGrid(x=True, y=True, alpha=0.25)
         self.plot.setMenuEnabled(True)

@@ -74,7 +74,7 @@ class StabilityMapView(PlotView):
         self._point_note = ""
         self.set_axis_labels("k_c", "N/m", "k_obj", "N/m")
         self.cursor_label.setMinimumWidth(0)
-        self.plot_widget.setMinimumSize(240, 180)
+        self.plot_widget.setMinimumSize(180, 170)
 
     def set_busy(self, busy: bool, text: str = "") -> None:
         self.header.setText(f"<b>{self.title}</b>" + (f"  <i>({text or 'updating…'})</i>" if busy else ""))

@@ -1,7 +1,7 @@
 """Stability plot: the coupling term against the bound on a log-frequency axis (Figs. 5 and 7).
 
 Impedance display: Re(1/Z_c) against the bound of eq. (9); admittance display: Re(Z_cA) against
-the bound of eq. (21).  Frequencies with a negative margin are shaded and the worst frequency is
+the bound of eq. (21).  Frequencies with a negative margin are shaded and the binding frequency (smallest reserve) is
 marked with its value.
 """
 
@@ -55,7 +55,7 @@ class StabilityPlot(PlotView):
         self.set_axis_labels("ω", "rad/s", "Re(1/Z_c)", "m/(N·s)")
         self.legend_region = pg.PlotDataItem([], [], pen=None, symbol="s", symbolSize=12,
                                              symbolBrush=self._bad_brush, symbolPen=None)
-        self.legend.addItem(self.legend_region, "margin < 0")
+        self.legend.addItem(self.legend_region, "margin &lt; 0")
 
     def _region(self, i: int) -> pg.LinearRegionItem:
         while len(self._regions) <= i:
@@ -105,10 +105,16 @@ class StabilityPlot(PlotView):
         for r in self._regions[len(runs):]:
             r.hide()
 
-        wf, wm = res.worst_frequency, res.worst_margin
+        # the marker sits where the bound binds (smallest reserve 1 - bound/term): the absolute worst
+        # margin usually lies at a band edge, where both curves are near zero and nothing is learnt
+        wf, rel = res.binding_frequency, res.relative_margin
+        if not (math.isfinite(wf) and wf > 0):
+            wf, rel = res.worst_frequency, math.nan
         if math.isfinite(wf) and wf > 0:
             self.worst_line.setPos(math.log10(wf))
-            text = f"worst: {plain(wf)} rad/s\nmargin {plain(wm, 3)} {unit}"
+            wm = float(np.interp(math.log10(wf), np.log10(w), np.where(np.isfinite(res.margin), res.margin, 0.0)))
+            reserve = f"reserve {100 * rel:.3g} %" if math.isfinite(rel) else f"margin {plain(wm, 3)} {unit}"
+            text = f"binds at {plain(wf)} rad/s\n{reserve}"
             if text != self.worst_line.label.format:
                 self.worst_line.label.setFormat(text)
             self.worst_line.show()

@@ -43,7 +43,7 @@ class TimePlot(PlotView):
         super().__init__(title, parent)
         self.set_axis_labels("t", "s", y_name, y_unit)
         self.curves = {name: self.curve(name, color, 1.6, style) for name, color, style in curves}
-        self.plot_widget.setMinimumSize(160, 120)
+        self.plot_widget.setMinimumSize(130, 120)
         self.cursor_label.setMinimumWidth(0)
 
     def set_series(self, t: np.ndarray, values: dict[str, np.ndarray | None]) -> None:

@@ -17,7 +17,7 @@ __all__ = ["VerdictView"]
 def _cell(title: str) -> tuple[QWidget, QLabel]:
     w = QWidget()
     lay = QVBoxLayout(w)
-    lay.setContentsMargins(10, 0, 10, 0)
+    lay.setContentsMargins(6, 0, 6, 0)
     lay.setSpacing(0)
     t = QLabel(title)
     t.setStyleSheet("font-size: 11px;")
@@ -38,18 +38,32 @@ class VerdictView(QFrame):
         self.revision = 0
         self.badge = QLabel("–")
         self.badge.setAlignment(Qt.AlignmentFlag.AlignCenter)
-        self.badge.setMinimumWidth(260)
+        self.badge.setMinimumWidth(200)
         lay = QHBoxLayout(self)
         lay.setContentsMargins(8, 6, 8, 6)
         lay.addWidget(self.badge)
         cells = {}
-        for key, title in (("margin", "worst margin"), ("freq", "binding frequency"), ("eta", "min η (Llewellyn)"),
-                           ("kmax", "k_max (low-ω stiffness)"), ("bmin", "b_min (low-ω damping)")):
+        tips = {
+            "reserve": "Smallest 1 − bound/coupling term over the band: the fraction of the coupling "
+                       "term left over where the bound comes closest (negative: the bound is exceeded)",
+            "freq": "Where the stability reserve is smallest (the bound binds there first)",
+            "margin": "Smallest coupling term − bound over the band (absolute, in the bound's units) "
+                      "and where it occurs",
+            "eta": "Smallest Llewellyn/Rollett factor η of the coupled interface (≥ 1: unconditionally stable)",
+        }
+        tips["kmax"] = "k_max: the low-frequency stiffness of Z_max (eq. 12 / 24)"
+        tips["bmin"] = "b_min: the low-frequency damping of Z_min (eq. 11 / 23)"
+        for key, title in (("reserve", "stability reserve"), ("freq", "binds at"),
+                           ("eta", "min η (Llewellyn)"),
+                           ("kmax", "k_max (stiffness)"), ("bmin", "b_min (damping)")):
             w, v = _cell(title)
+            w.setToolTip(tips.get(key, ""))
             cells[key] = v
             lay.addWidget(w)
         lay.addStretch(1)
-        self.margin, self.frequency, self.eta = cells["margin"], cells["freq"], cells["eta"]
+        self.reserve = cells["reserve"]
+        self.frequency, self.eta = cells["freq"], cells["eta"]
+        self.margin = self.reserve  # the absolute worst margin is in the reserve's tooltip
         self.kmax, self.bmin = cells["kmax"], cells["bmin"]
 
     def update_result(self, res: StabilityResult) -> None:
@@ -61,10 +75,12 @@ class VerdictView(QFrame):
         self.badge.setText(text)
         self.badge.setStyleSheet(f"background: {color}; color: white; font-size: 15px; font-weight: 700;"
                                  "border-radius: 4px; padding: 6px 12px;")
-        self.margin.setText(f"{fmt(res.worst_margin, 3)} {unit}")
-        wf = res.worst_frequency
+        rel = res.relative_margin
+        self.reserve.setText(f"{100 * rel:.3g} %" if math.isfinite(rel) else fmt(rel))
+        wf = res.binding_frequency if math.isfinite(res.binding_frequency) else res.worst_frequency
         hz = f" ({fmt(wf / (2 * math.pi), 3)} Hz)" if math.isfinite(wf) else ""
         self.frequency.setText(f"{fmt(wf)} rad/s{hz}")
+        self.reserve.setToolTip(f"worst margin {fmt(res.worst_margin, 3)} {unit} at {fmt(res.worst_frequency)} rad/s")
         self.eta.setText(fmt(res.min_eta, 6))
         self.kmax.setText(f"{fmt(res.k_max)} N/m")
         self.bmin.setText(f"{fmt(res.b_min)} N·s/m")

@@ -25,6 +25,9 @@ class ChoiceField(QWidget):
         self.label = QLabel(label)
         self.label.setTextFormat(Qt.TextFormat.RichText)
         self.combo = QComboBox()
+        # long option texts must not widen the whole tab: the popup still shows them in full
+        self.combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        self.combo.setMinimumContentsLength(12)
         for _, text in options:
             self.combo.addItem(text)
         if tooltip:

@@ -83,7 +83,7 @@ class ParameterPanel(QScrollArea):
         lay.addWidget(box)
         lay.addStretch(1)
         self.setWidget(body)
-        self.setMinimumWidth(400)
+        self.setMinimumWidth(360)
 
         model.fieldChanged.connect(self._on_field)
         model.profileReplaced.connect(self.refresh)

@@ -13,7 +13,15 @@ from ..compute_graph import ComputeGraph
 
 __all__ = ["TaskProgress", "TASK_TITLES"]
 
-TASK_TITLES = {"design_chart": "Computing design chart", "min_mass": "Minimizing m_c"}
+TASK_TITLES = {
+    "design_chart": "Computing design chart",
+    "min_mass": "Minimizing m_c",
+    "wall_tradeoff": "Sweeping B_c (transparency / robustness)",
+    "sampled_map": "Computing sampled-data stability map",
+    "sampled_exact_chart": "Computing exact k_c limits",
+    "sampled_limit": "Finding exact k_c limit",
+    "sampled_simulation": "Simulating contact",
+}
 
 
 class TaskProgress(QWidget):

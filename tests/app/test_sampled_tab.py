@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 import pytest
-
-pytest.importorskip("pytestqt")
 
 from analysis.profile_sections import SimulationSection  # noqa: E402
 from analysis.sampled import (  # noqa: E402
@@ -189,7 +189,24 @@ def test_cancel_keeps_last_result_and_can_rerun(window, qtbot):
     tab = show_tab(window, qtbot)
     g = window.graph
     old_chart = tab.exact_view.chart
-    set_section(window, delay_samples=2)  # the exact chart restarts (seconds of work)
+    # the first restart is held on the worker until it is cancelled: the test does not depend on
+    # how long the real chart takes
+    node = g.node(EXACT_NODE)
+    real = node.func
+    held = []
+
+    def held_once(profile, params, progress, cancelled):
+        if not held:
+            held.append(True)
+            for _ in range(2000):
+                if cancelled():
+                    return None
+                progress(0, 1)
+                time.sleep(0.005)
+        return real(profile, params, progress, cancelled)
+
+    node.func = held_once
+    set_section(window, delay_samples=2)  # the exact chart restarts
     qtbot.waitUntil(lambda: window.runner.is_running(EXACT_NODE), timeout=5000)
     assert tab.progress[EXACT_NODE].running
     tab.progress[EXACT_NODE].cancel_button.click()

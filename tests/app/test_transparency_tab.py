@@ -7,7 +7,6 @@ import math
 import numpy as np
 import pytest
 
-pytest.importorskip("pytestqt")
 
 from PySide6.QtCore import QSettings  # noqa: E402
 

@@ -1,0 +1,119 @@
+"""Exports from the main window (PNG, SVG, CSV), the verdict's numbers, About, and the screenshot."""
+
+from __future__ import annotations
+
+import csv
+import os
+import shutil
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PySide6.QtGui import QImage
+from PySide6.QtWidgets import QDialog, QLabel, QMessageBox
+
+from analysis import ImpedanceDisplay
+from app.tabs.stability_tab import StabilityTab
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def distinct_colours(image: QImage, step: int = 7) -> int:
+    seen = set()
+    for y in range(0, image.height(), step):
+        for x in range(0, image.width(), step):
+            seen.add(image.pixel(x, y))
+    return len(seen)
+
+
+def test_png_export_has_the_asked_size_and_content(win, tmp_path):
+    view = win.tab(StabilityTab).stability
+    path = tmp_path / "stability.png"
+    assert win.export_view(view, "png", str(path), width=1200)
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    image = QImage(str(path))
+    assert image.width() == 1200 and image.height() > 300
+    assert distinct_colours(image) > 20  # curves, text, grid: not a blank frame
+
+
+def test_svg_export_is_vector_with_labels(win, tmp_path):
+    view = win.tab(StabilityTab).stability
+    path = tmp_path / "stability.svg"
+    assert win.export_view(view, "svg", str(path))
+    root = ET.parse(path).getroot()
+    assert root.tag == f"{SVG}svg"
+    assert not list(root.iter(f"{SVG}image")), "axes or markers were rasterised"
+    assert len(list(root.iter(f"{SVG}path")) + list(root.iter(f"{SVG}polyline"))) > 10
+    text = "".join(t.text or "" for t in root.iter(f"{SVG}text"))
+    assert "ω" in text and "rad/s" in text
+
+
+def test_csv_export_holds_the_plotted_numbers(win, tmp_path):
+    view = win.tab(StabilityTab).stability
+    path = tmp_path / "stability.csv"
+    assert win.export_view(view, "csv", str(path))
+    rows = list(csv.reader(path.open()))
+    header, body = rows[0], rows[1:]
+    p = win.model.profile
+    res = ImpedanceDisplay(p.device).evaluate(p.kc, p.bc)
+    col = header.index("Re(1/Z_c): Re(1/Z_c) (m/(N·s))")  # "curve: y label"; x is the column before
+    assert header[col - 1] == "Re(1/Z_c): omega (rad/s)"
+    x = np.array([float(r[col - 1]) for r in body if r[col]])
+    y = np.array([float(r[col]) for r in body if r[col]])
+    np.testing.assert_allclose(x, res.w, rtol=1e-15)
+    np.testing.assert_allclose(y, res.coupling_term, rtol=1e-15)
+
+
+def test_failed_export_says_why_and_writes_nothing(win, tmp_path, monkeypatch):
+    shown = []
+    monkeypatch.setattr(QMessageBox, "critical", lambda *a, **k: shown.append(a[2]))
+    target = tmp_path / "missing-dir" / "plot.csv"
+    assert not win.export_view(win.tab(StabilityTab).stability, "csv", str(target))
+    assert shown and "missing-dir" in shown[0]
+    assert not target.exists()
+
+
+def test_verdict_shows_reserve_and_binding_frequency(win):
+    p = win.model.profile
+    res = ImpedanceDisplay(p.device).evaluate(p.kc, p.bc)
+    assert win.verdict.reserve.text() == f"{100 * res.relative_margin:.3g} %"
+    assert win.verdict.frequency.text().startswith(f"{res.binding_frequency:.4g}"[:4])
+    assert "✔" in win.verdict.badge.text()
+
+
+def test_about_box_names_the_papers_and_versions(win, monkeypatch):
+    opened = []
+
+    def fake_exec(dialog: QDialog) -> int:
+        opened.append(dialog)
+        return 0
+
+    monkeypatch.setattr(QDialog, "exec", fake_exec)
+    win._about()
+    assert opened and opened[0].windowTitle() == "About zwidth"
+    html = " ".join(label.text() for label in opened[0].findChildren(QLabel))
+    assert "Adams" in html and "Eom" in html and "PySide6" in html
+    assert not win.windowIcon().isNull()
+
+
+def test_screenshot_of_the_main_window(win, qtbot, tmp_path):
+    """The window as a user sees it; with ZWIDTH_SCREENSHOT_DIR set it is also kept (docs/)."""
+    qtbot.wait(100)
+    image = win.grab().toImage()
+    path = tmp_path / "screenshot.png"
+    assert image.save(str(path))
+    assert image.width() >= 1000 and distinct_colours(image) > 50
+    keep = os.environ.get("ZWIDTH_SCREENSHOT_DIR")
+    if keep:
+        Path(keep).mkdir(parents=True, exist_ok=True)
+        shutil.copy(path, Path(keep) / "screenshot.png")
+
+
+@pytest.mark.parametrize("fmt", ["png", "svg", "csv"])
+def test_every_plot_of_the_stability_tab_exports(win, tmp_path, fmt):
+    tab = win.tab(StabilityTab)
+    for view in (tab.stability, tab.range):
+        path = tmp_path / f"{view.title.split(':')[0].strip().replace(' ', '_')}.{fmt}"
+        assert win.export_view(view, fmt, str(path), width=800)
+        assert path.stat().st_size > 200
