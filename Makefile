@@ -30,6 +30,8 @@ run: setup
 test: setup
 	QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q
 	$(VENV)/bin/ruff check analysis app tests
+	# the benchmarks once, quickly: timing targets are reported, never failed on; a crash fails
+	QT_QPA_PLATFORM=offscreen $(VENV)/bin/zwidth bench --quick
 
 lint: setup
 	$(VENV)/bin/ruff check analysis app tests

@@ -217,6 +217,8 @@ class MainWindow(QMainWindow):
     # -- live refresh -----------------------------------------------------------------------------------
     @Slot(object)
     def _on_invalidated(self, names: set[str]) -> None:
+        # an edit: running jobs step aside while the visible views catch up (worker.py)
+        self.runner.defer_to_gui(0.05)
         if "stability" in names:
             self._verdict_stale = True
         for tab in self.analysis_tabs:

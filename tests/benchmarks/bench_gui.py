@@ -6,6 +6,9 @@ invalidation and view refresh, and then repaints the whole window synchronously
 (``QWidget.repaint``).  The time from ``setValue`` to the end of the repaint is the latency a
 user sees.  Two sliders: the coupling stiffness k_c (the device two-port is cached, only the
 coupling side is recomputed) and the handle mass m_1 (the device response is recomputed).
+
+The third row is the watchdog of the GUI issue: the longest time the GUI thread was busy while a
+long design chart ran on the worker and the user kept editing.
 """
 
 from __future__ import annotations
@@ -58,6 +61,59 @@ def _drag(app, win, field, samples: int) -> list[float]:
     return out
 
 
+def _watchdog(app, win, points: int) -> dict:
+    """GUI-thread gaps while a long design chart runs on the worker and the user keeps editing.
+
+    A 5 ms timer records the time between its ticks; a gap is how long the GUI thread was busy
+    (with the edits' own synchronous work and repaints included).  Target: no gap over 50 ms.
+    """
+    from PySide6.QtCore import QElapsedTimer, Qt, QTimer
+
+    from app.tabs.design_tab import DesignTab
+
+    g = win.graph
+    win.tabs.setCurrentWidget(win.tab(DesignTab))
+    _spin(app, lambda: g.is_fresh("design_chart"), 60.0)
+    g.node("design_chart").params["points"] = points
+    gaps: list[float] = []
+    clock = QElapsedTimer()
+    clock.start()
+    last = [clock.nsecsElapsed()]
+
+    def tick() -> None:
+        now = clock.nsecsElapsed()
+        gaps.append((now - last[0]) / 1e6)
+        last[0] = now
+
+    timer = QTimer()
+    timer.setTimerType(Qt.TimerType.PreciseTimer)
+    timer.timeout.connect(tick)
+    timer.start(5)
+    t0 = time.perf_counter()
+    win.panel.chain.fields[("masses", 0)].spin.setValue(0.25)
+    kc = 50e3
+    while not g.is_fresh("design_chart") and time.perf_counter() - t0 < 120:
+        deadline = time.perf_counter() + 0.1
+        while time.perf_counter() < deadline:
+            app.processEvents()
+            time.sleep(0.001)
+        kc = 55e3 if kc != 55e3 else 60e3
+        win.panel.fields["kc"].spin.setValue(kc)
+    timer.stop()
+    arr = np.array(gaps[1:]) if len(gaps) > 1 else np.array([np.nan])
+    return {"name": f"GUI-thread gaps during a {points}-point design chart with edits every 100 ms",
+            "median_ms": float(np.median(arr)), "p95_ms": float(np.percentile(arr, 95)),
+            "max_ms": float(arr.max()), "samples": int(arr.size), "target_max_ms": 50.0,
+            "chart_s": time.perf_counter() - t0}
+
+
+def _spin(app, done, seconds: float) -> None:
+    t0 = time.perf_counter()
+    while not done() and time.perf_counter() - t0 < seconds:
+        app.processEvents()
+        time.sleep(0.001)
+
+
 def run(quick: bool = False) -> list[dict]:
     from app.allocator import tune_allocator
 
@@ -71,6 +127,7 @@ def run(quick: bool = False) -> list[dict]:
         rows.append({"name": f"slider {label} -> repainted window (HBFD, offscreen)", "median_ms": float(np.median(ts)),
                      "p95_ms": float(np.percentile(ts, 95)), "max_ms": float(ts.max()), "samples": samples,
                      "target_median_ms": 16.0})
+    rows.append(_watchdog(app, win, 100 if quick else 400))
     win.undo_stack.setClean()  # no unsaved-changes question on close
     win.runner.shutdown()
     win.close()
