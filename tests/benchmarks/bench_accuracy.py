@@ -64,18 +64,19 @@ def _kc_rows(quick: bool) -> tuple[list[dict], dict]:
             w = np.geomspace(lo, hi, n)
             t = timeit(lambda w=w: float(np.min(f(w))), repeat=3 if quick else 10)
             val = float(np.min(f(w)))
-            pts.append(("log grid", n, t["median_ms"], abs(val - ref) / ref))
+            pts.append(("log grid", n, t["median_ms"], (val - ref) / ref))
             t2 = timeit(lambda w=w: grids.refine_minima(f, w, f(w), lo, hi, candidates=8), repeat=3 if quick else 10)
             rw, rv = grids.refine_minima(f, w, f(w), lo, hi, candidates=8)
             val2 = min(float(np.min(f(w))), float(rv[0]) if rv.size else np.inf)
-            pts.append(("log grid + refinement", n, t2["median_ms"], abs(val2 - ref) / ref))
+            pts.append(("log grid + refinement", n, t2["median_ms"], (val2 - ref) / ref))
         t3 = timeit(lambda dev=dev: ImpedanceDisplay(dev).max_stiffness(BC), repeat=3 if quick else 20)
         d = ImpedanceDisplay(dev).max_stiffness(BC)
-        pts.append(("zwidth resonance grid", d.evaluations, t3["median_ms"], abs(d.kc - ref) / ref))
-        series[z] = pts
+        pts.append(("zwidth resonance grid", d.evaluations, t3["median_ms"], (d.kc - ref) / ref))
+        # signed error: k_c above the dense reference is on the unsafe side
+        series[z] = [(name, n, ms, abs(e), e > 1e-12) for name, n, ms, e in pts]
         for name, n, ms, err in pts:
             rows.append({"name": f"largest k_c, zeta={z:g}, {name}", "points": n, "median_ms": ms,
-                         "rel_err": err, "unsafe": bool(name != "zwidth resonance grid" and err > 1e-9)})
+                         "rel_err": abs(err), "unsafe": bool(err > 1e-12)})
         rows.append({"name": f"largest k_c, zeta={z:g}, dense reference", "points": dense_points,
                      "kc": ref})
     return rows, series
@@ -100,15 +101,16 @@ def _bc_rows(quick: bool) -> tuple[list[dict], dict]:
             w = np.geomspace(lo, hi, n)
             t = timeit(lambda w=w: float(np.min(upper(w))), repeat=3 if quick else 10)
             val = 1.0 / float(np.min(upper(w)))
-            pts.append(("log grid", n, t["median_ms"], abs(val - ref) / ref))
+            pts.append(("log grid", n, t["median_ms"], (val - ref) / ref))
         t3 = timeit(lambda dev=dev: AdmittanceDisplay(dev, 50e3, 100.0).feasible_damping(mc), repeat=3 if quick else 10)
         d = AdmittanceDisplay(dev, 50e3, 100.0).feasible_damping(mc)
-        err = abs(d.low - ref) / ref if d.low is not None else float("nan")
+        err = (d.low - ref) / ref if d.low is not None else float("nan")
         pts.append(("zwidth resonance grid", len(adm.frequencies()), t3["median_ms"], err))
-        series[z] = pts
+        # signed error: a smallest b_c below the dense reference is on the unsafe side
+        series[z] = [(name, n, ms, abs(e), e < -1e-12) for name, n, ms, e in pts]
         for name, n, ms, e in pts:
             rows.append({"name": f"smallest b_c at m_c=31, zeta={z:g}, {name}", "points": n,
-                         "median_ms": ms, "rel_err": e})
+                         "median_ms": ms, "rel_err": abs(e), "unsafe": bool(e < -1e-12)})
     return rows, series
 
 
@@ -163,20 +165,33 @@ def _plot(series: dict, title: str, path: Path) -> None:
         import matplotlib.pyplot as plt
     except ImportError:  # pragma: no cover - plots are optional
         return
+    from matplotlib.ticker import LogLocator, NullFormatter
+
     fig, axes = plt.subplots(1, len(series), figsize=(4.2 * len(series), 3.8), sharey=True)
+    styles = (("log grid", "o", "C0"), ("log grid + refinement", "s", "C1"), ("zwidth resonance grid", "*", "C2"))
     for ax, (z, pts) in zip(np.atleast_1d(axes), series.items()):
-        for method, marker in (("log grid", "o"), ("log grid + refinement", "s"), ("zwidth resonance grid", "*")):
-            sel = [(ms, max(err, 1e-17), n) for name, n, ms, err in pts if name == method]
+        for method, marker, colour in styles:
+            sel = [(ms, max(err, 1e-17), n, bad) for name, n, ms, err, bad in pts if name == method]
             if not sel:
                 continue
-            x, y, n = zip(*sel)
-            ax.loglog(x, y, marker=marker, ms=9 if marker == "*" else 5, label=method)
-            for xi, yi, ni in zip(x, y, n):
-                ax.annotate(str(ni), (xi, yi), textcoords="offset points", xytext=(4, 4), fontsize=7)
+            x, y, n, bad = zip(*sel)
+            ax.loglog(x, y, color=colour, lw=1, label=method)
+            size = 11 if marker == "*" else 6
+            for xi, yi, bi in zip(x, y, bad):  # filled: conservative; hollow: on the unsafe side
+                ax.plot([xi], [yi], marker=marker, ms=size, color=colour,
+                        markerfacecolor="white" if bi else colour)
+            labelled = range(len(x)) if method != "log grid + refinement" else (0, len(x) - 1)
+            for i in labelled:
+                ax.annotate(str(n[i]), (x[i], y[i]), textcoords="offset points",
+                            xytext=(4, -10 if method == "log grid + refinement" else 4), fontsize=7)
         ax.axhline(1e-6, color="grey", lw=0.8, ls="--")
         ax.set_title(f"damping ratio {z:g}")
         ax.set_xlabel("run time (ms)")
-        ax.grid(True, which="both", alpha=0.3)
+        ax.xaxis.set_major_locator(LogLocator(base=10))
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.grid(True, which="major", alpha=0.3)
+    np.atleast_1d(axes)[-1].text(0.98, 0.02, "hollow marker: result on the unsafe side", ha="right",
+                                 va="bottom", fontsize=7, transform=np.atleast_1d(axes)[-1].transAxes)
     np.atleast_1d(axes)[0].set_ylabel("relative error against dense reference")
     np.atleast_1d(axes)[0].legend(fontsize=8)
     fig.suptitle(title)
