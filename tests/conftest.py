@@ -15,8 +15,9 @@ for _p in (os.path.dirname(_HERE), _HERE):  # the repository root (analysis) and
     if _p not in sys.path:
         sys.path.insert(0, _p)
 
-from analysis import Device  # noqa: E402
 from hbfd_fixtures import make_hbfd  # noqa: E402
+
+from analysis import Device  # noqa: E402
 
 
 @pytest.fixture(scope="session")

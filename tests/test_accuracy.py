@@ -13,10 +13,10 @@ from __future__ import annotations
 import mpmath as mp
 import numpy as np
 import pytest
-
 import reference as ref
-from analysis import AdmittanceDisplay, ImpedanceDisplay
 from strategies import seeded_device
+
+from analysis import AdmittanceDisplay, ImpedanceDisplay
 
 
 def rel_err(a, b):

@@ -13,11 +13,10 @@ from __future__ import annotations
 import control
 import numpy as np
 import pytest
-
 import reference as ref
+from strategies import seeded_device
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay
-from strategies import seeded_device
 
 TINY = 1e-300
 

@@ -14,12 +14,12 @@ from __future__ import annotations
 
 import math
 
+import dense
 import numpy as np
 import pytest
-
-import dense
-from analysis import ImpedanceDisplay
 from hbfd_fixtures import make_hbfd
+
+from analysis import ImpedanceDisplay
 
 RATIOS = [0.1, 1e-2, 1e-3, 1e-4]
 

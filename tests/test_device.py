@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 import pytest
-
 import reference as ref
-from analysis import AdmittanceDisplay, Device, ImpedanceDisplay, ValidationError, damping_from_ratio
 from hbfd_fixtures import HBFD_MASSES, HBFD_STIFFNESSES
+
+from analysis import AdmittanceDisplay, Device, ImpedanceDisplay, ValidationError, damping_from_ratio
 
 GOOD = dict(masses=[1.0, 2.0, 3.0], stiffnesses=[1e4, 2e4], dampings=[1.0, 2.0],
             ground_dampings=[0.0, 0.0, 1.0], sensor_element=0, sample_time=1e-3, band_min=1.0)

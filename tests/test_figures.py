@@ -9,15 +9,15 @@ from __future__ import annotations
 
 import math
 
+import dense
 import mpmath as mp
 import numpy as np
 import pytest
-
-import dense
 import reference as ref
+from hbfd_fixtures import make_hbfd
+
 from analysis import AdmittanceDisplay, ImpedanceDisplay
 from analysis.impedance import kc_upper
-from hbfd_fixtures import make_hbfd
 
 
 @pytest.fixture(scope="module")

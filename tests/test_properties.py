@@ -4,16 +4,16 @@ from __future__ import annotations
 
 import math
 
+import dense
 import numpy as np
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
+from strategies import random_device
 
-import dense
 from analysis import AdmittanceDisplay, ImpedanceDisplay, twoport
 from analysis.chain import chain_response
 from analysis.discretize import tustin_image
 from analysis.impedance import kc_upper
-from strategies import random_device
 
 FAST = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 SLOW = settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -7,8 +7,8 @@ import re
 from html.parser import HTMLParser
 from pathlib import Path
 
-import PySide6  # noqa: F401 - the reports need Qt: fail loudly, never skip
 import pypdf
+import PySide6  # noqa: F401 - the reports need Qt: fail loudly, never skip
 import pytest
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay  # noqa: E402

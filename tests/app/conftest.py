@@ -12,11 +12,11 @@ import tempfile
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 REQUESTED_PLATFORM = os.environ["QT_QPA_PLATFORM"]
 
-import app.qt_compat  # noqa: E402,F401 - PySide6 6.12 on CPython 3.11 (see the module)
 import PySide6  # noqa: E402,F401
 import pytest  # noqa: E402
 from PySide6.QtCore import QSettings  # noqa: E402
 
+import app.qt_compat  # noqa: E402,F401 - PySide6 6.12 on CPython 3.11 (see the module)
 from analysis.profiles import bundled_profiles, load_profile  # noqa: E402
 
 # Nothing a test does may touch the user's real preferences.
@@ -45,12 +45,10 @@ def hbfd_profile():
     return load_profile(bundled_profiles()["hbfd"])
 
 
-@pytest.fixture
-def win(qtbot, settings, hbfd_profile):
-    """The real main window on the HBFD preset, shown offscreen at 1400x900."""
+def _main_window(qtbot, settings, profile):
     from app.main_window import MainWindow
 
-    w = MainWindow(settings=settings, profile=hbfd_profile)
+    w = MainWindow(settings=settings, profile=profile)
     w.resize(1400, 900)
     w.show()
     qtbot.waitExposed(w)
@@ -62,3 +60,15 @@ def win(qtbot, settings, hbfd_profile):
     w.runner.shutdown()
     w.close()
     w.deleteLater()
+
+
+@pytest.fixture
+def win(qtbot, settings, hbfd_profile):
+    """The real main window on the HBFD preset, shown offscreen at 1400x900."""
+    yield from _main_window(qtbot, settings, hbfd_profile)
+
+
+@pytest.fixture
+def eom_win(qtbot, settings):
+    """The real main window on the Eom, Suh & Yi preset (wall and observer sections)."""
+    yield from _main_window(qtbot, settings, load_profile(bundled_profiles()["eom"]))

@@ -5,46 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-
-from PySide6.QtCore import QSettings  # noqa: E402
-
-from analysis.profiles import load_profile  # noqa: E402
-from analysis.observer import DisturbanceObserver, ObserverSettings, TwoAxisObserver  # noqa: E402
-
-from app.settings import Settings  # noqa: E402
-from app.tabs.observer_tab import NODES, OBSERVER_W, ObserverTab  # noqa: E402
-
-
-def _protect_bools() -> None:
-    """PySide6 6.12 on CPython 3.11 also drops references to True/False (see app/qt_compat.py,
-    which protects None only); without this the test process may abort at exit."""
-    import ctypes
-    import sys
-
-    if sys.version_info < (3, 12):
-        for obj in (True, False):
-            ref = ctypes.c_ssize_t.from_address(id(obj))
-            if ref.value < 1 << 40:
-                ref.value += 1 << 40
-
-
-_protect_bools()
+from analysis.observer import DisturbanceObserver, ObserverSettings, TwoAxisObserver
+from app.tabs.observer_tab import NODES, OBSERVER_W, ObserverTab
 
 
 @pytest.fixture
-def window(qtbot, tmp_path):
-    QSettings.setDefaultFormat(QSettings.Format.IniFormat)
-    QSettings.setPath(QSettings.Format.IniFormat, QSettings.Scope.UserScope, str(tmp_path))
-    from app.main_window import MainWindow
-
-    settings = Settings(QSettings(str(tmp_path / "zwidth.ini"), QSettings.Format.IniFormat))
-    w = MainWindow(settings=settings, profile=load_profile("resources/profiles/eom.json"))
-    w.show()
-    yield w
-    w.undo_stack.setClean()  # no "save changes?" dialog on close
-    w.runner.shutdown()
-    w.close()
-    w.deleteLater()
+def window(eom_win):
+    return eom_win
 
 
 def show(window, qtbot) -> ObserverTab:

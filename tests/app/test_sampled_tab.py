@@ -7,8 +7,8 @@ import time
 import numpy as np
 import pytest
 
-from analysis.profile_sections import SimulationSection  # noqa: E402
-from analysis.sampled import (  # noqa: E402
+from analysis.profile_sections import SimulationSection
+from analysis.sampled import (
     SimulationOptions,
     critical_stiffness,
     critical_stiffness_chart,
@@ -16,8 +16,7 @@ from analysis.sampled import (  # noqa: E402
     simulate,
     stability_map,
 )
-
-from app.tabs.sampled_tab import (  # noqa: E402
+from app.tabs.sampled_tab import (
     ASYNC_NODES,
     EXACT_NODE,
     LIMIT_NODE,

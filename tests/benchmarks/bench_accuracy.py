@@ -22,8 +22,7 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from analysis import AdmittanceDisplay, ImpedanceDisplay
-from analysis import grids
+from analysis import AdmittanceDisplay, ImpedanceDisplay, grids
 from analysis.impedance import kc_upper
 
 from .common import hbfd, timeit
