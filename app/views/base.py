@@ -11,7 +11,7 @@ from PySide6.QtCore import QPointF, QRectF, Qt, Signal, Slot
 from PySide6.QtGui import QAction, QColor, QFont, QPainter
 from PySide6.QtWidgets import QGraphicsItem, QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
-__all__ = ["PlotView", "Series", "clean_xy", "fmt", "PALETTE"]
+__all__ = ["PlotView", "Series", "clean_xy", "fmt", "PALETTE", "mark_design_point"]
 
 PALETTE = {
     "light": {"bg": "#ffffff", "fg": "#222222", "grid": 0.25, "a": "#1f5fbf", "b": "#d9480f", "c": "#2b8a3e",
@@ -95,6 +95,18 @@ class LogAxis(pg.AxisItem):
             else:
                 out.append("")
         return out
+
+
+def mark_design_point(item: pg.PlotDataItem, x: float, y: float, stable: bool | None, pal: dict) -> str:
+    """Draw the current design as one point on log-log axes; the note to show when it cannot be."""
+    if x > 0 and y > 0 and math.isfinite(x) and math.isfinite(y):
+        item.setData([x], [y])
+        note = ""
+    else:
+        item.setData([], [])
+        note = "current gains not drawn (zero on a log axis)"
+    item.setSymbolBrush(pal["c"] if stable else pal["mark"])
+    return note
 
 
 class PlotView(QWidget):

@@ -6,7 +6,6 @@ data coordinates; the tab turns it into an undo command.
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 import pyqtgraph as pg
@@ -14,7 +13,7 @@ from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QWidget
 
 from ..compute_graph import ChartResult
-from .base import PlotView, Series, clean_xy, plain
+from .base import PlotView, Series, clean_xy, mark_design_point, plain
 
 __all__ = ["DesignChart"]
 
@@ -110,14 +109,7 @@ class DesignChart(PlotView):
         self.bump()
 
     def update_point(self, x: float, y: float, stable: bool | None) -> None:
-        self._point_note = ""
-        if x > 0 and y > 0 and math.isfinite(x) and math.isfinite(y):
-            self.point.setData([x], [y])
-        else:
-            self.point.setData([], [])
-            self._point_note = "current gains not drawn (zero on a log axis)"
-        pal = self.palette_colors()
-        self.point.setSymbolBrush(pal["c"] if stable else pal["mark"])
+        self._point_note = mark_design_point(self.point, x, y, stable, self.palette_colors())
         self._refresh_warning()
         self.bump()
 

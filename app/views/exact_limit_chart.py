@@ -8,7 +8,6 @@ feasible (m_c, b_c) edges and the exact smallest stable m_c against b_c (rigid g
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 import pyqtgraph as pg
@@ -18,7 +17,7 @@ from PySide6.QtWidgets import QWidget
 from analysis.sampled import CriticalChart, CriticalMassChart
 
 from ..compute_graph import ChartResult
-from .base import PlotView, Series, clean_xy, plain
+from .base import PlotView, Series, clean_xy, mark_design_point, plain
 
 __all__ = ["ExactLimitChart"]
 
@@ -128,14 +127,7 @@ class ExactLimitChart(PlotView):
         self.bump()
 
     def update_point(self, x: float, y: float, stable: bool | None) -> None:
-        self._point_note = ""
-        if x > 0 and y > 0 and math.isfinite(x) and math.isfinite(y):
-            self.point.setData([x], [y])
-        else:
-            self.point.setData([], [])
-            self._point_note = "current gains not drawn (zero on a log axis)"
-        pal = self.palette_colors()
-        self.point.setSymbolBrush(pal["c"] if stable else pal["mark"])
+        self._point_note = mark_design_point(self.point, x, y, stable, self.palette_colors())
         self._refresh_warning()
         self.bump()
 
