@@ -13,7 +13,7 @@ from .device import Device
 from .discretize import check_frequencies, theta_of, tustin_image
 from .results import BoundResult, StabilityResult, TwoPort
 
-__all__ = ["DisplayBase", "APPARENT_FREQUENCY", "safe_ratio"]
+__all__ = ["DisplayBase", "APPARENT_FREQUENCY", "safe_ratio", "FrequencyGrid"]
 
 #: frequency (rad/s) at which the apparent free-motion mass and damping are read off Z_min
 APPARENT_FREQUENCY = 1e-3
@@ -28,6 +28,31 @@ def safe_ratio(num: np.ndarray, den: np.ndarray) -> tuple[np.ndarray, np.ndarray
         out = np.where(singular, np.sign(num) * np.inf, out)
         out = np.where(singular & (num == 0), 0.0, out)
     return out, singular
+
+
+class FrequencyGrid:
+    """``theta = w T / 2`` and its sine, cosine and tangent for one validated frequency
+    vector, computed once and shared by the bound, the coupling term and Z_max.
+
+    ``W = (2/T) tan(theta)`` is the Tustin image ``s = j W`` (eq. 2); ``imp`` holds the
+    chain's (node, element) impedances at ``s`` once a display has built them.
+    """
+
+    __slots__ = ("key", "w", "th", "sin", "cos", "tan", "W", "imp")
+
+    def __init__(self, key: bytes, w: np.ndarray, sample_time: float):
+        self.key = key
+        self.w = w
+        self.th = theta_of(w, sample_time)
+        self.sin = np.sin(self.th)
+        self.cos = np.cos(self.th)
+        self.tan = self.sin / self.cos  # 0 < theta < pi/2: cos > 0
+        self.W = (2.0 / sample_time) * self.tan
+        self.imp: tuple[np.ndarray, np.ndarray] | None = None
+
+    @property
+    def s(self) -> np.ndarray:
+        return 1j * self.W
 
 
 def _no_nan(res: BoundResult) -> BoundResult:
@@ -50,6 +75,7 @@ class DisplayBase:
         self.device = device
         self._cache: OrderedDict[bytes, tuple[BoundResult, TwoPort]] = OrderedDict()
         self._grid: np.ndarray | None = None
+        self._fgrid: FrequencyGrid | None = None  # trigonometry of the last frequency vector
         self.bound_evaluations = 0  # frequencies evaluated, for tests and benchmarks
 
     # -- grids ------------------------------------------------------------------------
@@ -74,9 +100,21 @@ class DisplayBase:
         """The bound with its parts, not cached (dense checks and refinement)."""
         return self._compute_checked(np.asarray(w, float))[0]
 
-    def _cached(self, w) -> tuple[BoundResult, TwoPort]:
-        """Bound and two-port from one chain sweep, cached for the last few vectors."""
-        w = check_frequencies(w, self.device.sample_time)
+    def _freq_grid(self, w: np.ndarray, key: bytes | None = None) -> FrequencyGrid:
+        """Trigonometry of ``theta`` for the (validated) vector ``w``, kept for the last one."""
+        if key is None:
+            key = w.tobytes()
+        fg = self._fgrid
+        if fg is None or fg.key != key:
+            fg = self._fgrid = FrequencyGrid(key, w, self.device.sample_time)
+        return fg
+
+    def _cached(self, w, checked: bool = False) -> tuple[BoundResult, TwoPort]:
+        """Bound and two-port from one chain sweep, cached for the last few vectors.
+
+        ``checked``: ``w`` already went through :func:`check_frequencies`."""
+        if not checked:
+            w = check_frequencies(w, self.device.sample_time)
         key = w.tobytes()
         hit = self._cache.get(key)
         if hit is not None:

@@ -32,9 +32,9 @@ import math
 import numpy as np
 
 from . import grids
-from .chain import chain_impedances, chain_response, handle_impedance
-from .discretize import check_frequencies, held_spring_damper, spring_damper
-from .display_base import APPARENT_FREQUENCY, DisplayBase, safe_ratio
+from .chain import chain_response, frozen_impedances, handle_impedance, terminated_handle_impedance
+from .discretize import check_frequencies, spring_damper, theta_of
+from .display_base import APPARENT_FREQUENCY, DisplayBase, FrequencyGrid, safe_ratio
 from .results import BoundResult, StabilityResult, StiffnessChart, StiffnessDesign, TwoPort
 
 __all__ = ["ImpedanceDisplay", "coupling_impedance", "kc_upper"]
@@ -50,11 +50,18 @@ def coupling_impedance(w, sample_time: float, kc: float, bc: float) -> np.ndarra
 def re_inv_coupling(w, sample_time: float, kc: float, bc: float) -> np.ndarray:
     """``Re(1/Z_c) = (b_c + k_c T/2) / |Z_c|^2`` (eq. 9, left side), cancellation-free."""
     th = 0.5 * np.asarray(w, float) * sample_time
+    return _re_inv_coupling(np.tan(th), sample_time, kc, bc)
+
+
+def _re_inv_coupling(tan_th: np.ndarray, sample_time: float, kc: float, bc: float) -> np.ndarray:
+    """:func:`re_inv_coupling` from ``tan(theta)``."""
     beta = bc + 0.5 * kc * sample_time
-    gam = 0.5 * kc * sample_time / np.tan(th)
+    gam = 0.5 * kc * sample_time / tan_th
     with np.errstate(divide="ignore", invalid="ignore"):
         out = beta / (beta * beta + gam * gam)
-    return np.where((beta == 0) & (gam == 0), np.inf, out)
+    if beta == 0:
+        out = np.where(gam == 0, np.inf, out)
+    return out
 
 
 def kc_upper(bound: np.ndarray, w: np.ndarray, sample_time: float, bc: float) -> np.ndarray:
@@ -87,6 +94,23 @@ def kc_upper(bound: np.ndarray, w: np.ndarray, sample_time: float, bc: float) ->
     return out
 
 
+def _handle_impedance_scalar(device, W: float) -> complex | None:
+    """:func:`analysis.chain.handle_impedance` at the single frequency ``s = j W``, in Python
+    complex arithmetic (same operations; no per-mass array overhead).  ``None`` on an exact
+    pole (division by zero)."""
+    m, g = device.masses.tolist(), device.ground_dampings.tolist()
+    b, k = device.dampings.tolist(), device.stiffnesses.tolist()
+    inv_w = 1.0 / W
+    R = complex(g[-1], m[-1] * W)
+    try:
+        for i in range(len(m) - 2, -1, -1):
+            e = complex(b[i], -k[i] * inv_w)
+            R = complex(g[i], m[i] * W) + e * R / (e + R)
+    except (ZeroDivisionError, OverflowError):
+        return None
+    return R
+
+
 class ImpedanceDisplay(DisplayBase):
     """Impedance display of a device chain with a spring-damper virtual coupling."""
 
@@ -94,7 +118,6 @@ class ImpedanceDisplay(DisplayBase):
 
     def __init__(self, device):
         super().__init__(device)
-        self._impedance_cache: tuple[bytes, tuple[np.ndarray, np.ndarray]] | None = None
         self._apparent: tuple[complex, float] | None = None
 
     def modes(self) -> np.ndarray:
@@ -103,17 +126,25 @@ class ImpedanceDisplay(DisplayBase):
     # -- eq. (2), (9) -------------------------------------------------------------------
     def _compute(self, w: np.ndarray) -> tuple[BoundResult, TwoPort]:
         """Y(z) of eq. (2) and the bound of eq. (9) from one chain sweep."""
-        th = self._theta(w)
-        c, s2 = np.cos(th), np.sin(0.5 * th)
-        r = chain_response(self.device, self._s(w), want_left=False)
-        abs_y2 = r.y12.real ** 2 + r.y12.imag ** 2
+        fg = self._freq_grid(w)
+        c, sn = fg.cos, fg.sin
+        r = chain_response(self.device, fg.s, want_left=False, impedances=self._impedances(fg))
+        y = r.y12
+        abs_y2 = y.real * y.real + y.imag * y.imag
         # det H = c2^2 Re X + 2 s2 c2 Im X - s2^2 (Re y11 Re y22 + (Im y)^2), and
-        # Re y11 Re y22 = Re X + (Re y)^2, so det H = s2^2 |y|^2 - cos(th) Re X - sin(th) Im X
-        num = c * (s2 * s2 * abs_y2 - c * r.x.real - np.sin(th) * r.x.imag)
+        # Re y11 Re y22 = Re X + (Re y)^2, so det H = s2^2 |y|^2 - cos(th) Re X - sin(th) Im X;
+        # s2^2 = sin^2(th/2) = sin^2(th) / (2 (1 + cos th))  (no subtraction: 0 < th < pi/2)
+        s2sq = sn * sn / (2.0 + 2.0 * c)
+        num = s2sq * abs_y2
+        num -= c * r.x.real
+        num -= sn * r.x.imag
+        num *= c
         bound, singular = safe_ratio(num, r.re_y11)
-        h = c * np.exp(-1j * th)
+        h = np.empty(w.shape, dtype=complex)  # hold factor cos(th) e^{-j th}
+        np.multiply(c, c, out=h.real)
+        np.multiply(c, -sn, out=h.imag)
         abs_p = abs_y2 * c
-        re_p = (r.y12 * r.y12 * h).real
+        re_p = (y * y * h).real
         br = BoundResult(w=w, bound=bound, p11=r.y11, re_p11=r.re_y11, abs_p=abs_p, re_p=re_p, singular=singular)
         return br, TwoPort(w=w, p11=r.y11, p12=r.y12 * h, p21=r.y12, p22=r.y22 * h)
 
@@ -135,19 +166,30 @@ class ImpedanceDisplay(DisplayBase):
         w = check_frequencies(w, self.device.sample_time)
         return 1.0 / self.two_port(w).p11, self._zmax(w, kc, bc)
 
+    def _impedances(self, fg: FrequencyGrid) -> tuple[np.ndarray, np.ndarray]:
+        """The chain's (node, element) impedances at the Tustin image of ``fg`` (kept on it)."""
+        if fg.imp is None:
+            fg.imp = frozen_impedances(self.device, fg.W)
+        return fg.imp
+
     def _zmax(self, w: np.ndarray, kc: float, bc: float) -> np.ndarray:
-        term = held_spring_damper(w, self.device.sample_time, kc, bc)
-        key = w.tobytes()
-        if self._impedance_cache is None or self._impedance_cache[0] != key:
-            self._impedance_cache = (key, chain_impedances(self.device, self._s(w)))
-        return handle_impedance(self.device, self._s(w), term, self._impedance_cache[1])
+        fg = self._freq_grid(w)
+        # held spring-damper h Z_c = b c^2 - j c (b s + k T / (2 s)) (discretize.held_spring_damper)
+        c, sn = fg.cos, fg.sin
+        term = np.empty(w.shape, dtype=complex)
+        np.multiply(bc * c, c, out=term.real)
+        np.multiply(-c, bc * sn + 0.5 * kc * self.device.sample_time / sn, out=term.imag)
+        return terminated_handle_impedance(self.device, self._impedances(fg), term)
 
     def apparent_impedance(self) -> complex:
         """Z_min at :data:`APPARENT_FREQUENCY`: the free-motion impedance (device only, cached)."""
         if self._apparent is None:
-            sa = self._s(np.array([APPARENT_FREQUENCY]))
-            za = complex(handle_impedance(self.device, sa)[0])
-            self._apparent = (za, abs(sa[0]))
+            T = self.device.sample_time
+            W = float((2.0 / T) * np.tan(theta_of(np.array([APPARENT_FREQUENCY]), T))[0])
+            za = _handle_impedance_scalar(self.device, W)
+            if za is None:  # exact pole of a lossless chain: numpy's inf/nan semantics
+                za = complex(handle_impedance(self.device, np.array([1j * W]))[0])
+            self._apparent = (za, W)
         return self._apparent[0]
 
     def k_max(self, kc: float) -> float:
@@ -162,9 +204,13 @@ class ImpedanceDisplay(DisplayBase):
 
     def evaluate(self, kc: float, bc: float, w=None, refine: bool = True) -> StabilityResult:
         """Bound, Re(1/Z_c), margin, eta, Z_min, Z_max and headline numbers."""
-        w = self.frequencies() if w is None else check_frequencies(w, self.device.sample_time)
-        br = self.bound_result(w)
-        term = self.coupling_term(w, kc, bc)
+        if w is None:
+            w = self.frequencies()
+            br = self.bound_result(w)
+        else:
+            w = check_frequencies(w, self.device.sample_time)
+            br = self._cached(w, checked=True)[0]
+        term = _re_inv_coupling(self._freq_grid(w).tan, self.device.sample_time, kc, bc)
         margin = term - br.bound
         with np.errstate(divide="ignore", invalid="ignore"):  # exact poles of a lossless chain
             zmin = 1.0 / br.p11
