@@ -38,9 +38,12 @@ class StabilityPlot(PlotView):
         super().__init__("Stability: coupling term against the bound", parent)
         self.coupling_curve = self.curve("Re(1/Z<sub>c</sub>)", "#1f5fbf")
         self.bound_curve = self.curve("bound (eq. 9)", "#d9480f", style=Qt.PenStyle.DashLine)
-        self.worst_point = pg.PlotDataItem([], [], pen=None, symbol="o", symbolSize=9,
-                                           symbolBrush="#c92a2a", symbolPen="w")
-        self.plot.addItem(self.worst_point)
+        # one spot at the item's origin, moved with setPos (view coordinates): rebuilding a
+        # scatter's spot table on every slider step costs more than the curves' update
+        self.worst_point = pg.ScatterPlotItem(pos=[(0.0, 0.0)], size=9, brush=pg.mkBrush("#c92a2a"),
+                                              pen=pg.mkPen("w"), pxMode=True)
+        self.worst_point.hide()
+        self.plot.addItem(self.worst_point, ignoreBounds=True)
         self.worst_line = pg.InfiniteLine(angle=90, movable=False,
                                           pen=pg.mkPen("#c92a2a", width=1, style=Qt.PenStyle.DotLine),
                                           label="", labelOpts={"position": 0.92, "color": "#c92a2a",
@@ -120,12 +123,13 @@ class StabilityPlot(PlotView):
             self.worst_line.show()
             yw = float(np.interp(math.log10(wf), np.log10(w), c)) if np.all(np.isfinite(c)) else math.nan
             if math.isfinite(yw) and (yw > 0 or not log_y):
-                self.worst_point.setData([wf], [yw])
+                self.worst_point.setPos(math.log10(wf), math.log10(yw) if log_y else yw)
+                self.worst_point.show()
             else:
-                self.worst_point.setData([], [])
+                self.worst_point.hide()
         else:
             self.worst_line.hide()
-            self.worst_point.setData([], [])
+            self.worst_point.hide()
         self.zero_line.setVisible(not log_y)
         self.set_warning(notes)
         self.bump()
@@ -140,7 +144,7 @@ class StabilityPlot(PlotView):
         self.worst_line.setPen(pg.mkPen(pal["mark"], width=1, style=Qt.PenStyle.DotLine))
         self.worst_line.label.setColor(pal["mark"])
         self.worst_line.label.fill = pg.mkBrush(pal["bg"])
-        self.worst_point.setSymbolBrush(pal["mark"])
+        self.worst_point.setBrush(pg.mkBrush(pal["mark"]))
 
     def export_series(self) -> list[Series]:
         return list(self._series)
