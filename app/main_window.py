@@ -168,7 +168,7 @@ class MainWindow(QMainWindow):
                 title = load_profile(path).name
             except ProfileError:
                 title = name
-            act = self.presets_menu.addAction(title)
+            act = self.presets_menu.addAction(title.replace("&", "&&"))  # "&" is a mnemonic marker
             act.triggered.connect(lambda _=False, n=name: self.load_preset(n))
         file.addSeparator()
         file.addAction(self.act_save)
@@ -391,7 +391,7 @@ class MainWindow(QMainWindow):
         self.recent_menu.clear()
         files = self.settings.recent_files()
         for f in files:
-            act = self.recent_menu.addAction(os.path.basename(f))
+            act = self.recent_menu.addAction(os.path.basename(f).replace("&", "&&"))
             act.setToolTip(f)
             act.setStatusTip(f)
             act.triggered.connect(lambda _=False, p=f: self.open_path(p))

@@ -100,7 +100,7 @@ class ObserverTab(AnalysisTab):
             self.fields[name] = f
             return f
 
-        box = QGroupBox("Disturbance observer (Eom, Suh & Yi, Fig. 1, eq. 3–5)")
+        box = QGroupBox("Disturbance observer (Eom, Suh && Yi, Fig. 1, eq. 3–5)")
         box.setToolTip("Stored in the profile's observer section")
         g = QGridLayout(box)
         g.setContentsMargins(6, 4, 6, 4)

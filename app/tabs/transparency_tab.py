@@ -217,7 +217,7 @@ class TransparencyTab(AnalysisTab):
             self.fields[name] = f
             return f
 
-        box = QGroupBox("Wall controller (Eom, Suh & Yi, eq. 7–17)")
+        box = QGroupBox("Wall controller (Eom, Suh && Yi, eq. 7–17)")
         box.setToolTip("Stored in the profile's wall section (B_c is a design variable of this tab)")
         g = QGridLayout(box)
         g.setContentsMargins(6, 4, 6, 4)

@@ -326,3 +326,16 @@ def test_run_gui_opens_profile_from_command_line(qapp, tmp_path, monkeypatch):
     QTimer.singleShot(300, finish)
     assert main_window.run_gui(str(path)) == 0
     assert seen and "cmdline.json" in seen[0][0] and seen[0][1] == p.name
+
+
+def test_ampersands_are_shown_not_taken_as_mnemonics(win):
+    from PySide6.QtWidgets import QGroupBox
+
+    from app.tabs.observer_tab import ObserverTab
+    from app.tabs.transparency_tab import TransparencyTab
+
+    titles = [a.text() for a in win.presets_menu.actions()]
+    assert "Eom, Suh && Yi device" in titles  # shown as "Eom, Suh & Yi device"
+    for cls in (ObserverTab, TransparencyTab):
+        boxes = win.tab(cls).findChildren(QGroupBox)
+        assert any("Suh && Yi" in b.title() for b in boxes)
