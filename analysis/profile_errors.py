@@ -1,0 +1,100 @@
+"""The error a profile file or dict is refused with, and how a rejected JSON value is described.
+
+:class:`ProfileError` names the file and the JSON path of the offending value, e.g.
+``hbfd.json: $.device.masses[2]: expected a number > 0 and finite, got -1.0``.
+
+Numerics only: this module never imports Qt.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Mapping
+
+import numpy as np
+
+__all__ = ["ProfileError"]
+
+#: Stands for "the key is absent" (``None`` is JSON ``null``).
+_MISSING = object()
+
+
+class ProfileError(ValueError):
+    """A profile file or dict cannot be used.
+
+    Attributes
+    ----------
+    path:
+        The file (as given), or ``None`` for a dict that did not come from a file.
+    json_path:
+        Location of the offending value, e.g. ``"$.device.masses[2]"``; ``None`` when the
+        problem is the file as a whole (unreadable, not JSON).
+    expected:
+        What was expected there, e.g. ``"a number > 0 and finite"``.
+    reason:
+        The message without the file and JSON path prefixes.
+    """
+
+    def __init__(
+        self,
+        reason: str,
+        *,
+        path: str | os.PathLike | None = None,
+        json_path: str | None = None,
+        expected: str | None = None,
+    ):
+        self.reason = reason
+        self.path = None if path is None else os.fspath(path)
+        self.json_path = json_path
+        self.expected = expected
+        prefix = "".join(f"{part}: " for part in (self.path, json_path) if part)
+        super().__init__(prefix + reason)
+
+    @classmethod
+    def at(cls, json_path: str, expected: str, got: object = _MISSING) -> ProfileError:
+        """``$.x: expected <expected>, got <value>`` (``missing`` when the key is absent)."""
+        return cls(f"expected {expected}, got {_describe(got)}", json_path=json_path, expected=expected)
+
+    def with_path(self, path: str | os.PathLike | None) -> ProfileError:
+        """The same error attributed to file ``path``."""
+        if path is None or self.path is not None:
+            return self
+        err = ProfileError(self.reason, path=path, json_path=self.json_path, expected=self.expected)
+        err.__cause__ = self.__cause__
+        return err
+
+
+class _NonFinite:
+    """Stands for a NaN / Infinity literal in the JSON text; rejected wherever it appears."""
+
+    __slots__ = ("literal",)
+
+    def __init__(self, literal: str):
+        self.literal = literal
+
+    def __repr__(self) -> str:
+        return self.literal
+
+
+def _describe(value: object) -> str:
+    """A short JSON-flavoured description of a rejected value."""
+    if value is _MISSING:
+        return "nothing (the key is missing)"
+    if isinstance(value, _NonFinite):
+        return f"{value.literal} (NaN and Infinity are not allowed)"
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float, np.integer, np.floating)):
+        text = repr(float(value)) if isinstance(value, (float, np.floating)) else str(int(value))
+        return text if len(text) <= 40 else text[:37] + "..."
+    if isinstance(value, str):
+        shown = value if len(value) <= 40 else value[:37] + "..."
+        return f"the string {json.dumps(shown)}"
+    if isinstance(value, (list, tuple)):
+        return f"a list of {len(value)} item{'s' if len(value) != 1 else ''}"
+    if isinstance(value, Mapping):
+        return "an object"
+    return type(value).__name__
