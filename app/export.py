@@ -16,7 +16,7 @@ from PySide6.QtGui import QColor, QImage, QPainter
 
 from .views.base import PlotView
 
-__all__ = ["export_png", "export_svg", "export_csv", "csv_text", "ExportError", "FORMATS"]
+__all__ = ["export_png", "export_svg", "svg_bytes", "export_csv", "csv_text", "ExportError", "FORMATS"]
 
 FORMATS = {"png": "PNG image (*.png)", "svg": "SVG drawing (*.svg)", "csv": "CSV data (*.csv)"}
 
@@ -41,10 +41,6 @@ def _source(view: PlotView) -> QRectF:
     return QRectF(view.plot_widget.viewport().rect())
 
 
-def _render(view: PlotView, painter: QPainter, target: QRectF) -> None:
-    view.render_into(painter, target)
-
-
 def export_png(view: PlotView, path: str | os.PathLike, width: int, height: int | None = None) -> QSize:
     """Write the plot as a PNG ``width`` pixels wide (height keeps the aspect ratio unless given)."""
     src = _source(view)
@@ -57,7 +53,7 @@ def export_png(view: PlotView, path: str | os.PathLike, width: int, height: int 
     image.fill(QColor(view.palette_colors()["bg"]))
     painter = QPainter(image)
     try:
-        _render(view, painter, QRectF(0, 0, width, height))
+        view.render_into(painter, QRectF(0, 0, width, height))
     finally:
         painter.end()
     buf = QByteArray()
@@ -73,13 +69,20 @@ def export_png(view: PlotView, path: str | os.PathLike, width: int, height: int 
 def export_svg(view: PlotView, path: str | os.PathLike) -> None:
     """Write the plot as an SVG drawing (vector)."""
     try:
-        from PySide6.QtSvg import QSvgGenerator
+        import PySide6.QtSvg  # noqa: F401
     except ImportError:  # pragma: no cover - PySide6 without QtSvg: pyqtgraph's own exporter
         from pyqtgraph.exporters import SVGExporter
 
         text = SVGExporter(view.plot.scene()).export(toBytes=True)
         _write_atomic(path, bytes(text))
         return
+    _write_atomic(path, svg_bytes(view, view.title, view.palette_colors()["bg"], "zwidth plot"))
+
+
+def svg_bytes(view: PlotView, title: str, background: str, description: str = "") -> bytes:
+    """The plot as an SVG document (QSvgGenerator; vector axes, curves and text)."""
+    from PySide6.QtSvg import QSvgGenerator
+
     src = _source(view)
     buf = QByteArray()
     dev = QBuffer(buf)
@@ -88,16 +91,17 @@ def export_svg(view: PlotView, path: str | os.PathLike) -> None:
     gen.setOutputDevice(dev)
     gen.setSize(src.size().toSize())
     gen.setViewBox(QRectF(0, 0, src.width(), src.height()))
-    gen.setTitle(view.title)
-    gen.setDescription("zwidth plot")
+    gen.setTitle(title)
+    if description:
+        gen.setDescription(description)
     painter = QPainter(gen)
     try:
-        painter.fillRect(QRectF(0, 0, src.width(), src.height()), QColor(view.palette_colors()["bg"]))
-        _render(view, painter, QRectF(0, 0, src.width(), src.height()))
+        painter.fillRect(QRectF(0, 0, src.width(), src.height()), QColor(background))
+        view.render_into(painter, QRectF(0, 0, src.width(), src.height()))
     finally:
         painter.end()
     dev.close()
-    _write_atomic(path, bytes(buf.data()))
+    return bytes(buf.data())
 
 
 def csv_text(view: PlotView) -> str:

@@ -18,7 +18,7 @@ from app import qt_compat  # noqa: F401 - before any Qt call
 import numpy as np
 import pyqtgraph as pg
 from PySide6.QtCore import QRectF, Qt, qInstallMessageHandler
-from PySide6.QtGui import QFont, QGuiApplication, QPainter
+from PySide6.QtGui import QFont, QGuiApplication
 from PySide6.QtWidgets import QApplication
 
 from ..compute_graph import ChartResult
@@ -173,11 +173,6 @@ def _prepare(view: PlotView, size: tuple[int, int] = FIG_SIZE) -> PlotView:
     view.legend.anchor(itemPos=(1, 0), parentPos=(1, 0), offset=(-10, 10))  # re-anchor at the final size
     QApplication.processEvents()
     return view
-
-
-def render_plot(view: PlotView, painter: QPainter, target: QRectF) -> None:
-    """Paint the view's plot into ``target`` of any painter (PDF, SVG), everything as vectors."""
-    view.render_into(painter, target)
 
 
 def _notes(view: PlotView) -> str:

@@ -8,11 +8,10 @@ import re
 
 from app import qt_compat  # noqa: F401 - before any Qt call
 
-from PySide6.QtCore import QByteArray, QBuffer, QIODevice, QRectF
-from PySide6.QtGui import QColor, QPainter
 
 from .content import ReportContent
-from .figures import Figure, render_plot
+from ..export import svg_bytes
+from .figures import Figure
 from .pdf import section_html
 
 __all__ = ["write_html", "svg_text", "report_html"]
@@ -38,26 +37,7 @@ footer { margin-top: 2em; color: #6b7785; font-size: .85em; border-top: 1px soli
 
 def svg_text(fig: Figure, prefix: str) -> str:
     """The figure's plot as an ``<svg>`` element (QSvgGenerator), ids made unique by ``prefix``."""
-    from PySide6.QtSvg import QSvgGenerator
-
-    pw = fig.view.plot_widget
-    src = QRectF(pw.viewport().rect())
-    buf = QByteArray()
-    dev = QBuffer(buf)
-    dev.open(QIODevice.OpenModeFlag.WriteOnly)
-    gen = QSvgGenerator()
-    gen.setOutputDevice(dev)
-    gen.setSize(src.size().toSize())
-    gen.setViewBox(QRectF(0, 0, src.width(), src.height()))
-    gen.setTitle(fig.title)
-    painter = QPainter(gen)
-    try:
-        painter.fillRect(QRectF(0, 0, src.width(), src.height()), QColor("#ffffff"))
-        render_plot(fig.view, painter, QRectF(0, 0, src.width(), src.height()))
-    finally:
-        painter.end()
-    dev.close()
-    text = bytes(buf.data()).decode("utf-8")
+    text = svg_bytes(fig.view, fig.title, "#ffffff").decode("utf-8")
     text = text[text.index("<svg"):]
     text = re.sub(r'\bid="([^"]+)"', lambda m: f'id="{prefix}{m.group(1)}"', text)
     text = re.sub(r"url\(#([^)]+)\)", lambda m: f"url(#{prefix}{m.group(1)})", text)

@@ -18,7 +18,7 @@ from PySide6.QtCore import QMarginsF, QRectF, QSizeF, Qt
 from PySide6.QtGui import QColor, QFont, QPageLayout, QPageSize, QPainter, QPdfWriter, QPen, QTextDocument
 
 from .content import ReportContent
-from .figures import Figure, render_plot
+from .figures import Figure
 
 __all__ = ["write_pdf", "PAGE_SIZES"]
 
@@ -121,7 +121,7 @@ class _Figure(_Block):
         target = QRectF(x, y, self.plot_w, self.plot_h)
         painter.save()
         painter.setClipRect(target)
-        render_plot(self.fig.view, painter, target)
+        self.fig.view.render_into(painter, target)
         painter.restore()
         painter.setPen(QPen(QColor("#c8d0da"), 0.8))
         painter.drawRect(target)
