@@ -88,17 +88,12 @@ class ObserverTab(AnalysisTab):
         lay.addLayout(grid, 1)
 
     def _build_controls(self, model: ProfileModel) -> QWidget:
-        sec, ed = self.section, self.ctx.editor
+        sec = self.section
 
         def slider(name: str, label: str, unit: str, lo: float, hi: float, tip: str, log: bool = True,
                    zero: bool = False) -> LogSliderField:
-            f = LogSliderField(model, ("observer",), sec.reader(name), sec.writer(name, label), ed.new_drag,
-                               label, unit, lo, hi, log=log, allow_zero=zero, tooltip=tip)
-            f.setObjectName(f"observer_{name}")
-            f.slider.setMinimumWidth(60)
-            f.unit.setMinimumWidth(40)
-            self.fields[name] = f
-            return f
+            self.fields[name] = sec.slider(name, label, unit, lo, hi, tip, log=log, allow_zero=zero)
+            return self.fields[name]
 
         box = QGroupBox("Disturbance observer (Eom, Suh && Yi, Fig. 1, eq. 3–5)")
         box.setToolTip("Stored in the profile's observer section")

@@ -210,12 +210,8 @@ class TransparencyTab(AnalysisTab):
 
         def slider(name: str, label: str, unit: str, lo: float, hi: float, tip: str, log: bool = True,
                    zero: bool = False) -> LogSliderField:
-            f = LogSliderField(model, ("wall",), sec.reader(name), sec.writer(name, label), ed.new_drag,
-                               label, unit, lo, hi, log=log, allow_zero=zero, tooltip=tip)
-            f.setObjectName(f"wall_{name}")
-            _compact(f)
-            self.fields[name] = f
-            return f
+            self.fields[name] = sec.slider(name, label, unit, lo, hi, tip, log=log, allow_zero=zero)
+            return self.fields[name]
 
         box = QGroupBox("Wall controller (Eom, Suh && Yi, eq. 7–17)")
         box.setToolTip("Stored in the profile's wall section (B_c is a design variable of this tab)")
@@ -256,7 +252,7 @@ class TransparencyTab(AnalysisTab):
                                        tooltip="Controller damping B_c of C(s) = B_c + K_c/s (eq. 12); "
                                                "not stored in the profile")
         self.bc_field.setObjectName("wall_bc")
-        _compact(self.bc_field)
+        self.bc_field.make_compact()
         self.optimum_button = QPushButton("Use robust optimum")
         self.optimum_button.setToolTip("Set B_c to the B_c minimizing J subject to ‖L‖∞ ≤ 1 (section 3)")
         self.optimum_button.clicked.connect(self.use_optimum)
@@ -486,12 +482,6 @@ class TransparencyTab(AnalysisTab):
         lines.append(f"Step: F<sub>h</sub> = {fmt(st.step_force)} N for {fmt(st.step_duration)} s "
                      "on the exact sampled loop (whatever the hold model).")
         self.summary.setText("<br>".join(lines))
-
-
-def _compact(field: LogSliderField) -> None:
-    """Three slider fields side by side must fit next to the parameter panel."""
-    field.slider.setMinimumWidth(60)
-    field.unit.setMinimumWidth(40)
 
 
 def _runs(x: np.ndarray, mask: np.ndarray) -> list[tuple[float, float]]:

@@ -98,6 +98,11 @@ class LogSliderField(QWidget):
         self.refresh()
 
     # -- mapping ------------------------------------------------------------------------------------
+    def make_compact(self) -> None:
+        """Narrow minimum widths, for several fields side by side next to the parameter panel."""
+        self.slider.setMinimumWidth(60)
+        self.unit.setMinimumWidth(40)
+
     def value_to_position(self, value: float) -> int:
         if not math.isfinite(value):
             return 0

@@ -12,6 +12,7 @@ from analysis import ValidationError
 
 from ..commands import Editor, describe_error
 from ..model import ProfileModel
+from .log_slider_field import LogSliderField
 
 __all__ = ["SectionBinding"]
 
@@ -44,3 +45,13 @@ class SectionBinding:
     def writer(self, name: str, label: str) -> Callable[..., str | None]:
         """For LogSliderField (``value, drag``) and the choice fields (``value``)."""
         return lambda value, drag=None: self.write(name, value, label, drag)
+
+    def slider(self, name: str, label: str, unit: str, lo: float, hi: float, tooltip: str, log: bool = True,
+               allow_zero: bool = False) -> LogSliderField:
+        """A compact slider field for one parameter of the section (object name ``section_name``)."""
+        f = LogSliderField(self.model, (self.section,), self.reader(name), self.writer(name, label),
+                           self.editor.new_drag, label, unit, lo, hi, log=log, allow_zero=allow_zero,
+                           tooltip=tooltip)
+        f.setObjectName(f"{self.section}_{name}")
+        f.make_compact()
+        return f
