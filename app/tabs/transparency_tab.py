@@ -247,7 +247,7 @@ class TransparencyTab(AnalysisTab):
             for c, w in enumerate(row):
                 g.addWidget(w, r, c)
         # the current B_c (tab state, not a profile field)
-        self.bc_field = LogSliderField(model, (), lambda _m: self.bc, self._write_bc, ed.new_drag,
+        self.bc_field = LogSliderField(model, (), lambda _m: self.bc, self._write_bc, ed,
                                        "<b>B<sub>c</sub></b>", "N·s/m", 0.1, 100.0,
                                        tooltip="Controller damping B_c of C(s) = B_c + K_c/s (eq. 12); "
                                                "not stored in the profile")

@@ -100,11 +100,11 @@ class ChainEditor(QWidget):
         if ratio:
             f = LogSliderField(model, ("dampings", "masses", "stiffnesses", *_DEV),
                                lambda m: float(m.device.damping_ratios[i]),
-                               lambda v, d: ed.edit_damping_ratio(i, v, d), ed.new_drag,
+                               lambda v, d: ed.edit_damping_ratio(i, v, d), ed,
                                label, unit, lo, hi, allow_zero=zero, tooltip=tip)
         else:
             f = LogSliderField(model, (name, *_DEV), lambda m: float(m.get(name)[i]),
-                               lambda v, d: ed.edit_element(name, i, v, d), ed.new_drag,
+                               lambda v, d: ed.edit_element(name, i, v, d), ed,
                                label, unit, lo, hi, allow_zero=zero, tooltip=tip)
         f.setObjectName(f"{name}_{i}")
         self.fields[key] = f

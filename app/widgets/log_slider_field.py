@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterable
+from typing import Protocol
 
 from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QGridLayout, QLabel, QSizePolicy, QSlider, QWidget
@@ -25,6 +26,14 @@ Reader = Callable[[ProfileModel], float]
 Writer = Callable[[float, "int | None"], "str | None"]
 
 
+class Drags(Protocol):
+    """Hands out one token per slider drag (the Editor: edits with one token merge into one undo step)."""
+
+    def new_drag(self) -> int: ...
+
+    def end_drag(self, token: int) -> None: ...
+
+
 class LogSliderField(QWidget):
     """``label  [slider]  [spin box] unit`` with a refusal message underneath."""
 
@@ -36,7 +45,7 @@ class LogSliderField(QWidget):
         fields: Iterable[str],
         read: Reader,
         write: Writer,
-        new_drag: Callable[[], int],
+        drags: Drags,
         label: str,
         unit: str,
         lo: float,
@@ -45,13 +54,10 @@ class LogSliderField(QWidget):
         allow_zero: bool = False,
         tooltip: str = "",
         parent: QWidget | None = None,
-        end_drag: Callable[[int], None] | None = None,
     ) -> None:
         super().__init__(parent)
         self._model, self._fields = model, frozenset(fields)
-        self._read, self._write, self._new_drag = read, write, new_drag
-        # the Editor's end_drag by default (new_drag is normally its bound method)
-        self._end_drag = end_drag or getattr(getattr(new_drag, "__self__", None), "end_drag", None)
+        self._read, self._write, self._drags = read, write, drags
         self._lo, self._hi, self._log, self._zero = lo, hi, log, allow_zero
         self._drag: int | None = None
         self._syncing = False
@@ -161,13 +167,13 @@ class LogSliderField(QWidget):
 
     @Slot()
     def _on_pressed(self) -> None:
-        self._drag = self._new_drag()
+        self._drag = self._drags.new_drag()
 
     @Slot()
     def _on_released(self) -> None:
         token, self._drag = self._drag, None
-        if token is not None and self._end_drag is not None:
-            self._end_drag(token)
+        if token is not None:
+            self._drags.end_drag(token)
 
     @Slot(int)
     def _on_slider(self, pos: int) -> None:

@@ -30,7 +30,7 @@ class ParameterPanel(QScrollArea):
 
         def field(name: str, label: str, unit: str, lo: float, hi: float, zero: bool, tip: str) -> LogSliderField:
             f = LogSliderField(model, (name,), lambda m: float(m.get(name)), lambda v, d: editor.edit(name, v, d),
-                               editor.new_drag, label, unit, lo, hi, allow_zero=zero, tooltip=tip)
+                               editor, label, unit, lo, hi, allow_zero=zero, tooltip=tip)
             f.setObjectName(name)
             self.fields[name] = f
             return f

@@ -50,7 +50,7 @@ class SectionBinding:
                allow_zero: bool = False) -> LogSliderField:
         """A compact slider field for one parameter of the section (object name ``section_name``)."""
         f = LogSliderField(self.model, (self.section,), self.reader(name), self.writer(name, label),
-                           self.editor.new_drag, label, unit, lo, hi, log=log, allow_zero=allow_zero,
+                           self.editor, label, unit, lo, hi, log=log, allow_zero=allow_zero,
                            tooltip=tooltip)
         f.setObjectName(f"{self.section}_{name}")
         f.make_compact()
