@@ -17,7 +17,7 @@ from app import qt_compat  # noqa: F401 - before any Qt call
 
 import numpy as np
 import pyqtgraph as pg
-from PySide6.QtCore import QRectF, Qt, qInstallMessageHandler
+from PySide6.QtCore import Qt, qInstallMessageHandler
 from PySide6.QtGui import QFont, QGuiApplication
 from PySide6.QtWidgets import QApplication
 
@@ -25,10 +25,11 @@ from ..compute_graph import ChartResult
 from ..views.base import PlotView, Series, clean_xy
 from ..views.design_chart import DesignChart
 from ..views.range_plot import RangePlot
+from ..views.stability_map import StabilityMapView
 from ..views.stability_plot import StabilityPlot
 from .content import ReportContent, num
 
-__all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "CurvesPlot", "MapPlot"]
+__all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "CurvesPlot"]
 
 #: size (px at 96 dpi) the views are laid out at; the PDF scales them to the text width
 FIG_SIZE = (658, 350)
@@ -104,54 +105,6 @@ class CurvesPlot(PlotView):
                                pen=pg.mkPen("#c92a2a", width=1, style=Qt.PenStyle.DotLine),
                                label=label, labelOpts={"position": 0.08, "color": "#c92a2a"})
         self.plot.addItem(line, ignoreBounds=True)
-
-    def export_series(self) -> list[Series]:
-        return list(self._series)
-
-
-class MapPlot(PlotView):
-    """A parameter map coloured by the spectral radius, on log axes, with the stable boundary."""
-
-    def __init__(self, title: str, x: tuple[str, str], y: tuple[str, str]) -> None:
-        super().__init__(title)
-        self.set_log(True, True)
-        self.set_axis_labels(x[0], x[1], y[0], y[1])
-        self._series: list[Series] = []
-
-    def set_map(self, xs: np.ndarray, ys: np.ndarray, rho: np.ndarray) -> None:
-        lx, ly = np.log10(xs), np.log10(ys)
-        dx = (lx[-1] - lx[0]) / max(lx.size - 1, 1)
-        dy = (ly[-1] - ly[0]) / max(ly.size - 1, 1)
-        shown = np.clip(np.nan_to_num(rho, nan=2.0), 0.8, 1.2)
-        cmap = pg.ColorMap([0.0, 0.499, 0.501, 1.0],
-                           [(43, 138, 62), (210, 235, 215), (250, 215, 215), (201, 42, 42)])
-        img = pg.ImageItem(shown.T, levels=(0.8, 1.2))
-        img.setLookupTable(cmap.getLookupTable(0.0, 1.0, 256))
-        img.setRect(QRectF(lx[0] - dx / 2, ly[0] - dy / 2, dx * lx.size, dy * ly.size))
-        img.setZValue(-20)
-        self.plot.addItem(img)
-        iso = pg.IsocurveItem(data=rho.T, level=1.0, pen=pg.mkPen("#222222", width=2))
-        iso.setParentItem(img)
-        # legend swatches
-        for name, color in (("stable (ρ &lt; 1)", (43, 138, 62)), ("unstable (ρ &gt; 1)", (201, 42, 42))):
-            sw = pg.PlotDataItem([], [], pen=None, symbol="s", symbolSize=12, symbolBrush=pg.mkBrush(color),
-                                symbolPen=None)
-            self.plot.addItem(sw)
-            self.legend.addItem(sw, name)
-        self.legend.addItem(pg.PlotDataItem([], [], pen=pg.mkPen("#222222", width=2)), "ρ = 1")
-        self.plot.getViewBox().setRange(xRange=(lx[0] - dx / 2, lx[-1] + dx / 2),
-                                        yRange=(ly[0] - dy / 2, ly[-1] + dy / 2), padding=0)
-        X, Y = np.meshgrid(xs, ys)
-        self._series = [Series("spectral radius", f"{self.x_name} ({self.x_unit})", "rho (-)",
-                               X.ravel(), rho.ravel()),
-                        Series("second parameter", f"{self.x_name} ({self.x_unit})",
-                               f"{self.y_name} ({self.y_unit})", X.ravel(), Y.ravel())]
-
-    def point(self, x: float, y: float, name: str) -> None:
-        item = pg.PlotDataItem([x], [y], pen=None, symbol="o", symbolSize=11, symbolBrush="#1f5fbf",
-                               symbolPen="w", name=name)
-        item.setZValue(20)
-        self.plot.addItem(item)
 
     def export_series(self) -> list[Series]:
         return list(self._series)
@@ -247,9 +200,8 @@ def make_view(content: ReportContent, key: str) -> Figure | None:
         smap = res.get("map")
         if smap is None:
             return None
-        names = {"bc": ("b_c", "N·s/m"), "kc": ("k_c", "N/m"), "mc": ("m_c", "kg")}
-        v = MapPlot("Sampled-data stability map", names[smap.x_name], names[smap.y_name])
-        v.set_map(np.asarray(smap.x), np.asarray(smap.y), np.asarray(smap.spectral_radius))
+        v = StabilityMapView()  # the app's own map view: same colours, colour bar and ρ = 1 line
+        v.update_map(smap)
         if imp:
             kind, chart = res["chart"]
             kc = np.asarray(chart.kc, float)
@@ -259,7 +211,7 @@ def make_view(content: ReportContent, key: str) -> Figure | None:
             if inside.any():
                 item = v.curve("largest k<sub>c</sub>, two-port (eq. 9)", "#1f5fbf", 2.0, Qt.PenStyle.DashLine)
                 item.setData(xs[inside], kc[ok][inside])
-        v.point(*res["map_point"], "profile's coupling")
+        v.update_point(*res["map_point"], None)
         term = ("hands-off, rigid penalty wall" if imp else "rigid grasp, free motion")
         cap = (f"Spectral radius &rho; of the exact sampled closed loop ({term}); "
                f"{len(smap.x)}&times;{len(smap.y)} grid, the black line is &rho; = 1.")
