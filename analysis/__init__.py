@@ -5,11 +5,11 @@ Numerics only (numpy, scipy); it never imports Qt.  Implements Adams, Moreyra & 
 ``analysis.transparency``) Eom, Suh & Yi's wall-controller design.
 """
 
-from .admittance import AdmittanceDisplay
-from .device import Device, damping_from_ratio, ratio_from_damping
-from .errors import ValidationError
-from .impedance import ImpedanceDisplay
-from .results import (
+from analysis.twoport.admittance import AdmittanceDisplay
+from analysis.chain.device import Device, damping_from_ratio, ratio_from_damping
+from analysis.errors import ValidationError
+from analysis.twoport.impedance import ImpedanceDisplay
+from analysis.twoport.results import (
     BoundResult,
     DampingInterval,
     MassChart,
@@ -19,7 +19,7 @@ from .results import (
     StiffnessDesign,
     TwoPort,
 )
-from .twoport import eta, llewellyn, convert
+from analysis.twoport.llewellyn import eta, llewellyn, convert
 
 __all__ = [
     "AdmittanceDisplay",
@@ -42,7 +42,7 @@ __all__ = [
 ]
 
 try:  # profiles are written alongside; re-export when present
-    from .profiles import Profile, ProfileError, load_profile, save_profile  # noqa: F401
+    from analysis.profiles.io import Profile, ProfileError, load_profile, save_profile  # noqa: F401
 
     __all__ += ["Profile", "ProfileError", "load_profile", "save_profile"]
 except ImportError:  # pragma: no cover

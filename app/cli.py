@@ -150,7 +150,7 @@ def format_table(summary: Mapping) -> str:
 
 
 def _analyze(profile_path: str | Path, as_json: bool) -> int:
-    from analysis.profiles import ProfileError, load_profile
+    from analysis.profiles.io import ProfileError, load_profile
 
     try:
         profile = load_profile(profile_path)
@@ -159,9 +159,9 @@ def _analyze(profile_path: str | Path, as_json: bool) -> int:
     from analysis.errors import ValidationError
 
     try:
-        from analysis.summary import summarize
+        from analysis.study.summary import summarize
     except ModuleNotFoundError as exc:
-        if exc.name != "analysis.summary":
+        if exc.name != "analysis.study.summary":
             raise
         return _error("this build has no analysis summary (analysis/summary.py is missing)")
 
@@ -172,15 +172,15 @@ def _analyze(profile_path: str | Path, as_json: bool) -> int:
     if as_json:
         print(json.dumps(_jsonable(summary), indent=2, allow_nan=False))
     else:
-        from analysis.summary import format_summary
+        from analysis.study.summary import format_summary
 
         print(format_summary(summary))
     return 0
 
 
 def _design(profile_path: str | Path, display: str | None, as_json: bool) -> int:
-    from analysis.profiles import ProfileError, load_profile
-    from analysis.summary import design_summary, format_design
+    from analysis.profiles.io import ProfileError, load_profile
+    from analysis.study.summary import design_summary, format_design
 
     try:
         profile = load_profile(profile_path)
@@ -211,7 +211,7 @@ def _headless() -> None:
 
 
 def _load_for_qt(profile_path: str | Path):
-    from analysis.profiles import ProfileError, load_profile
+    from analysis.profiles.io import ProfileError, load_profile
 
     try:
         return load_profile(profile_path), None
@@ -243,7 +243,7 @@ def _export_plot(args: argparse.Namespace) -> int:
     from app.report.figures import FIG_SIZE, ensure_app, make_view
 
     ensure_app()
-    from app import export
+    from app.views import export
 
     try:
         content = gather(profile, source=str(args.profile), sampled=section == "simulation")
@@ -292,7 +292,7 @@ def _report(args: argparse.Namespace) -> int:
 
 
 def _gui(profile_path: str | Path | None) -> int:
-    from analysis.profiles import ProfileError, load_profile
+    from analysis.profiles.io import ProfileError, load_profile
 
     path = Path(profile_path) if profile_path is not None else _default_profile()
     try:
@@ -300,9 +300,9 @@ def _gui(profile_path: str | Path | None) -> int:
     except ProfileError as err:
         return _error(str(err))
     try:
-        main_window = importlib.import_module("app.main_window")
+        main_window = importlib.import_module("app.window.main_window")
     except ModuleNotFoundError as exc:
-        if exc.name != "app.main_window":
+        if exc.name != "app.window.main_window":
             return _error(f"cannot start the GUI: {exc}")
         main_window = None
     except ImportError as exc:  # usually a missing system library for Qt

@@ -148,20 +148,20 @@ def run_selftest() -> int:
 def _run() -> int:
     _say(f"python {sys.version.split()[0]}, frozen={bool(getattr(sys, 'frozen', False))}, "
          f"platform={os.environ.get('QT_QPA_PLATFORM')}")
-    from analysis.profiles import load_profile
+    from analysis.profiles.io import load_profile
     from analysis.resources import resource_path
 
     hbfd = resource_path("profiles", "hbfd.json")
     profile = load_profile(hbfd)
     _say(f"profile {profile.name!r} from {hbfd}")
 
-    from . import qt_compat  # noqa: F401 - before any Qt call
+    from app import qt_compat  # noqa: F401 - before any Qt call
     from PySide6.QtWidgets import QApplication
 
     try:
-        main_window = importlib.import_module("app.main_window")
+        main_window = importlib.import_module("app.window.main_window")
     except ModuleNotFoundError as exc:
-        if exc.name != "app.main_window":
+        if exc.name != "app.window.main_window":
             raise
         main_window = None
     make_application = getattr(main_window, "make_application", None)
@@ -169,7 +169,7 @@ def _run() -> int:
     app.setApplicationName("zwidth")
     app.setDesktopFileName("zwidth")
 
-    from .about import AboutDialog, app_icon, icon_path
+    from app.window.about import AboutDialog, app_icon, icon_path
 
     icon = app_icon()
     if icon.isNull() or icon.pixmap(256, 256).isNull():
@@ -188,7 +188,7 @@ def _run() -> int:
         kind = "main window"
     else:
         window = _fallback_plot(profile)
-        kind = "pyqtgraph plot (app.main_window has no MainWindow yet)"
+        kind = "pyqtgraph plot (app.window.main_window has no MainWindow yet)"
     window.setWindowIcon(icon)
     window.show()
     app.processEvents()

@@ -53,7 +53,7 @@ def refined_min(f, w, v, candidates: int = 6, xatol: float = 1e-13):
 
 def dense_max_stiffness(imp, bc: float, points: int = 300_000, candidates: int = 6):
     """Largest k_c of eq. (9): minimum over frequency of the closed-form per-frequency limit."""
-    from analysis.impedance import kc_upper
+    from analysis.twoport.impedance import kc_upper
 
     T = imp.device.sample_time
     w = band(imp.device, points)

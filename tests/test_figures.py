@@ -17,7 +17,7 @@ import reference as ref
 from hbfd_fixtures import make_hbfd
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay
-from analysis.impedance import kc_upper
+from analysis.twoport.impedance import kc_upper
 
 
 @pytest.fixture(scope="module")

@@ -47,7 +47,7 @@ def test_analysis_imports_no_qt():
     result = run(SCRIPT.format(extra="", forbidden=FORBIDDEN))
     assert result["failed"] == []
     # a real walk: the modules this check is about were imported
-    assert {"analysis.device", "analysis.errors", "analysis.profiles", "analysis.resources"} <= set(
+    assert {"analysis.chain.device", "analysis.errors", "analysis.profiles", "analysis.resources"} <= set(
         result["imported"]
     )
     assert result["bad"] == []
@@ -69,7 +69,7 @@ def test_cli_analyze_path_imports_no_qt(tmp_path):
         import importlib.util, json, sys
         from app.cli import main
         codes = [main(["analyze", {str(bad)!r}]), main([{str(bad)!r}])]
-        if importlib.util.find_spec("analysis.summary") is not None:
+        if importlib.util.find_spec("analysis.study.summary") is not None:
             codes.append(main(["analyze", {str(ROOT / "resources/profiles/hbfd.json")!r}, "--json"]))
         bad = sorted(n for n in sys.modules if n.split(".")[0] in ("PySide6", "shiboken6", "pyqtgraph"))
         print(json.dumps({{"codes": codes, "bad": bad}}))

@@ -7,8 +7,8 @@ import pytest
 from scipy import signal
 
 from analysis import Device, ValidationError
-from analysis.five_bar import FiveBar, five_bar_preset
-from analysis.observer import DisturbanceObserver, ObserverSettings, TwoAxisObserver
+from analysis.transparency.five_bar import FiveBar, five_bar_preset
+from analysis.transparency.observer import DisturbanceObserver, ObserverSettings, TwoAxisObserver
 
 
 # -- five-bar -------------------------------------------------------------------------------------------

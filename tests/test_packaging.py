@@ -168,7 +168,7 @@ def test_icons_match_the_svg() -> None:
 @pytest.mark.gui
 def test_about_box_and_icon(qtbot) -> None:
     """app.about: the icon has every size; the About box names the papers and the licenses."""
-    from app.about import AboutDialog, app_icon, app_version
+    from app.window.about import AboutDialog, app_icon, app_version
 
     icon = app_icon()
     assert not icon.isNull()

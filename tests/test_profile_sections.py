@@ -6,9 +6,9 @@ import json
 
 import pytest
 
-from analysis.observer import ObserverSettings
-from analysis.profile_sections import SimulationSection
-from analysis.profiles import (
+from analysis.transparency.observer import ObserverSettings
+from analysis.profiles.sections import SimulationSection
+from analysis.profiles.io import (
     SCHEMA_VERSION,
     ProfileError,
     load_profile,
@@ -17,9 +17,9 @@ from analysis.profiles import (
     save_profile,
 )
 from analysis.resources import resource_path
-from analysis.scenarios import hbfd_options, scenario
-from analysis.transparency import WallDesign
-from analysis.wall import WallSettings
+from analysis.sampled.scenarios import hbfd_options, scenario
+from analysis.transparency.design import WallDesign
+from analysis.transparency.settings import WallSettings
 
 
 def _v1_dict() -> dict:

@@ -13,10 +13,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from analysis import profiles
-from analysis.device import Device
+from analysis.profiles import io as profiles
+from analysis.chain.device import Device
 from analysis.errors import ValidationError
-from analysis.profiles import (
+from analysis.profiles.io import (
     Profile,
     ProfileError,
     bundled_profiles,

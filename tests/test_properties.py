@@ -11,9 +11,9 @@ from hypothesis import strategies as st
 from strategies import random_device
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay, twoport
-from analysis.chain import chain_response
-from analysis.discretize import tustin_image
-from analysis.impedance import kc_upper
+from analysis.chain.response import chain_response
+from analysis.chain.discretize import tustin_image
+from analysis.twoport.impedance import kc_upper
 
 FAST = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 SLOW = settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])

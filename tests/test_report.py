@@ -12,8 +12,8 @@ import PySide6  # noqa: F401 - the reports need Qt: fail loudly, never skip
 import pytest
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay  # noqa: E402
-from analysis.profiles import bundled_profiles, load_profile  # noqa: E402
-from analysis.summary import summarize  # noqa: E402
+from analysis.profiles.io import bundled_profiles, load_profile  # noqa: E402
+from analysis.study.summary import summarize  # noqa: E402
 
 PROFILES = sorted(bundled_profiles().items())
 IDS = [name for name, _ in PROFILES]
@@ -106,7 +106,7 @@ def test_report_numbers_equal_analysis(built, name):
     for i, m in enumerate(p.device.masses):
         assert content.printed(f"device.mass[{i}]") == num(m)
     if p.wall is not None:
-        from analysis.transparency import WallDesign
+        from analysis.transparency.design import WallDesign
 
         best = WallDesign.from_settings(p.wall).optimal_damping()
         assert content.printed("wall.optimum.bc") == num(best.bc)
@@ -192,7 +192,7 @@ def test_pdf_plots_are_vector(built):
 
 
 def test_export_report_action(app, tmp_path, monkeypatch):
-    from app.main_window import MainWindow
+    from app.window.main_window import MainWindow
 
     win = MainWindow()
     try:

@@ -18,8 +18,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from analysis import AdmittanceDisplay, Device, ImpedanceDisplay, ValidationError
-from analysis.impedance import re_inv_coupling
-from analysis.twoport import convert, eta
+from analysis.twoport.impedance import re_inv_coupling
+from analysis.twoport.llewellyn import convert, eta
 from tests import reference as ref
 
 STRESS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])

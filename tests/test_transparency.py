@@ -15,9 +15,9 @@ import pytest
 from scipy import integrate, optimize, signal
 
 from analysis import Device, ValidationError
-from analysis.chain import chain_response
-from analysis.hold_models import hold_response
-from analysis.transparency import WallDesign, WallSettings
+from analysis.chain.response import chain_response
+from analysis.transparency.holds import hold_response
+from analysis.transparency.design import WallDesign, WallSettings
 
 PAPER = dict(mass=0.01, damping=0.022, wall_stiffness=1000.0, wall_damping=1.0, sample_time=1e-3,
              weight_cutoff=100.0)
@@ -283,7 +283,7 @@ def test_chain_plant_is_handle_admittance():
     dev = Device.from_damping_ratios([0.004, 0.006], [2e4], 0.1, ground_dampings=[0.0, 0.022], sample_time=1e-3)
     d = WallDesign(**{**PAPER, "hold": "lowpass2"}, device=dev)
     s = 1j * np.geomspace(1, 1e4, 30)
-    from analysis.transparency import handle_admittance
+    from analysis.transparency.design import handle_admittance
 
     np.testing.assert_allclose(handle_admittance(dev, s), chain_response(dev, s).y11, rtol=1e-12)
     lyap = d.index_result(15.0)

@@ -28,8 +28,8 @@ def build_report(profile, path, *, page_size: str = "a4", source: str | None = N
     """
     import time
 
-    from .content import ReportCancelled, gather
-    from .figures import build_figures
+    from app.report.content import ReportCancelled, gather
+    from app.report.figures import build_figures
 
     fmt = report_format(path)
     if fmt is None:
@@ -46,11 +46,11 @@ def build_report(profile, path, *, page_size: str = "a4", source: str | None = N
     figures = build_figures(content)
     step(2, "Writing the " + fmt.upper())
     if fmt == "pdf":
-        from .pdf import write_pdf
+        from app.report.pdf import write_pdf
 
         pages = write_pdf(content, figures, path, page_size=page_size)
     else:
-        from .html import write_html
+        from app.report.html import write_html
 
         write_html(content, figures, path)
         pages = None

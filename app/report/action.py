@@ -9,8 +9,8 @@ from app import qt_compat  # noqa: F401 - before any Qt call
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QApplication, QFileDialog, QMessageBox, QProgressDialog, QWidget
 
-from . import REPORT_FORMATS, build_report, report_format
-from .content import ReportCancelled
+from app.report import REPORT_FORMATS, build_report, report_format
+from app.report.content import ReportCancelled
 
 __all__ = ["export_report"]
 

@@ -17,8 +17,8 @@ from typing import Any
 import numpy as np
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay
-from analysis.profiles import Profile
-from analysis.summary import summarize
+from analysis.profiles.io import Profile
+from analysis.study.summary import summarize
 
 __all__ = ["ReportContent", "Section", "Row", "ReportCancelled", "gather", "num", "app_version", "METHODS"]
 
@@ -195,7 +195,7 @@ def _wall(profile: Profile, res: dict, numbers: dict) -> Section | None:
     st = profile.wall
     if st is None:
         return None
-    from analysis.transparency import WallDesign
+    from analysis.transparency.design import WallDesign
 
     wd = WallDesign.from_settings(st, profile.device if st.plant == "chain" else None)
     curves = wd.tradeoff()

@@ -21,13 +21,13 @@ from PySide6.QtCore import Qt, qInstallMessageHandler
 from PySide6.QtGui import QFont, QGuiApplication
 from PySide6.QtWidgets import QApplication
 
-from ..compute_graph import ChartResult
-from ..views.base import PlotView, Series, clean_xy
-from ..views.design_chart import DesignChart
-from ..views.range_plot import RangePlot
-from ..views.stability_map import StabilityMapView
-from ..views.stability_plot import StabilityPlot
-from .content import ReportContent, num
+from app.core.compute_graph import ChartResult
+from app.views.base import PlotView, Series, clean_xy
+from app.views.design_chart import DesignChart
+from app.views.range_plot import RangePlot
+from app.views.stability_map import StabilityMapView
+from app.views.stability_plot import StabilityPlot
+from app.report.content import ReportContent, num
 
 __all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "CurvesPlot"]
 

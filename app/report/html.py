@@ -9,10 +9,10 @@ import re
 from app import qt_compat  # noqa: F401 - before any Qt call
 
 
-from .content import ReportContent
-from ..export import svg_bytes
-from .figures import Figure
-from .pdf import section_html
+from app.report.content import ReportContent
+from app.views.export import svg_bytes
+from app.report.figures import Figure
+from app.report.pdf import section_html
 
 __all__ = ["write_html", "svg_text", "report_html"]
 

@@ -17,8 +17,8 @@ from app import qt_compat  # noqa: F401 - before any Qt call
 from PySide6.QtCore import QMarginsF, QRectF, QSizeF, Qt
 from PySide6.QtGui import QColor, QFont, QPageLayout, QPageSize, QPainter, QPdfWriter, QPen, QTextDocument
 
-from .content import ReportContent
-from .figures import Figure
+from app.report.content import ReportContent
+from app.report.figures import Figure
 
 __all__ = ["write_pdf", "PAGE_SIZES"]
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import importlib
 import pkgutil
 
-from .base import AnalysisTab, AppContext
+from app.tabs.base import AnalysisTab, AppContext
 
 __all__ = ["AnalysisTab", "AppContext", "tab_classes"]
 

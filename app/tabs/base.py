@@ -13,11 +13,11 @@ from typing import ClassVar
 
 from PySide6.QtWidgets import QWidget
 
-from ..commands import Editor
-from ..compute_graph import ComputeGraph
-from ..model import ProfileModel
-from ..settings import Settings
-from ..views.base import PlotView
+from app.core.commands import Editor
+from app.core.compute_graph import ComputeGraph
+from app.core.model import ProfileModel
+from app.core.settings import Settings
+from app.views.base import PlotView
 
 __all__ = ["AppContext", "AnalysisTab"]
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 from PySide6.QtCore import QTimer, Slot
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
-from ..views.base import PlotView
-from ..views.design_chart import DesignChart
-from .base import AnalysisTab, AppContext
+from app.views.base import PlotView
+from app.views.design_chart import DesignChart
+from app.tabs.base import AnalysisTab, AppContext
 
 __all__ = ["DesignTab", "TAB"]
 

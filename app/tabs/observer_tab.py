@@ -16,18 +16,18 @@ import numpy as np
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QGridLayout, QGroupBox, QVBoxLayout, QWidget
 
-from analysis.observer import PRESETS, DisturbanceObserver, ObserverResponse, ObserverSettings, TwoAxisObserver
-from analysis.profiles import Profile
+from analysis.transparency.observer import PRESETS, DisturbanceObserver, ObserverResponse, ObserverSettings, TwoAxisObserver
+from analysis.profiles.io import Profile
 
-from ..compute_graph import ComputeGraph, Node
-from ..model import ProfileModel
-from ..views.base import PlotView, fmt
-from ..views.curves_plot import CurvesPlot
-from ..widgets.choice_field import ChoiceField
-from ..widgets.int_field import IntField
-from ..widgets.log_slider_field import LogSliderField
-from ..widgets.section_binding import SectionBinding
-from .base import AnalysisTab, AppContext
+from app.core.compute_graph import ComputeGraph, Node
+from app.core.model import ProfileModel
+from app.views.base import PlotView, fmt
+from app.views.curves_plot import CurvesPlot
+from app.widgets.choice_field import ChoiceField
+from app.widgets.int_field import IntField
+from app.widgets.log_slider_field import LogSliderField
+from app.widgets.section_binding import SectionBinding
+from app.tabs.base import AnalysisTab, AppContext
 
 __all__ = ["ObserverTab", "TAB", "observer_settings", "OBSERVER_W"]
 

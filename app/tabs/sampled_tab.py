@@ -32,7 +32,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from analysis.profiles import Profile
+from analysis.profiles.io import Profile
 from analysis.sampled import (
     HANDS_OFF,
     RIGID_GRASP,
@@ -45,19 +45,19 @@ from analysis.sampled import (
     simulate,
     stability_map,
 )
-from analysis.terminations import PAPER_WALL_STIFFNESS
+from analysis.sampled.terminations import PAPER_WALL_STIFFNESS
 
-from ..compute_graph import GAIN_FIELDS, ComputeGraph, Node
-from ..model import DEVICE_FIELDS
-from ..views.base import PlotView, plain
-from ..views.exact_limit_chart import ExactLimitChart
-from ..views.stability_map import PARAMETER_LABELS, StabilityMapView
-from ..views.time_response import TimeResponse
-from ..widgets.node_progress import NodeProgress
-from ..widgets.sci_spin_box import SciSpinBox
-from ..widgets.simulation_panel import SimulationPanel, current_section
-from ..widgets.task_progress import TASK_TITLES
-from .base import AnalysisTab, AppContext
+from app.core.compute_graph import GAIN_FIELDS, ComputeGraph, Node
+from app.core.model import DEVICE_FIELDS
+from app.views.base import PlotView, plain
+from app.views.exact_limit_chart import ExactLimitChart
+from app.views.stability_map import PARAMETER_LABELS, StabilityMapView
+from app.views.time_response import TimeResponse
+from app.widgets.node_progress import NodeProgress
+from app.widgets.sci_spin_box import SciSpinBox
+from app.panels.simulation_panel import SimulationPanel, current_section
+from app.widgets.task_progress import TASK_TITLES
+from app.tabs.base import AnalysisTab, AppContext
 
 __all__ = ["SampledTab", "TAB", "MAP_AXES", "DEFAULT_RANGES", "map_arguments", "exact_grid"]
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QCheckBox, QHBoxLayout, QLabel, QSplitter, QVBoxLayout, QWidget
 
-from ..views.base import PlotView
-from ..views.range_plot import RangePlot
-from ..views.stability_plot import StabilityPlot
-from .base import AnalysisTab, AppContext
+from app.views.base import PlotView
+from app.views.range_plot import RangePlot
+from app.views.stability_plot import StabilityPlot
+from app.tabs.base import AnalysisTab, AppContext
 
 __all__ = ["StabilityTab", "TAB"]
 

@@ -31,19 +31,19 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from analysis.profiles import Profile
-from analysis.transparency import WallDesign
-from analysis.wall import IndexResult, OptimalDamping, RobustnessPeak, StepResponse, TradeoffCurves, WallSettings
+from analysis.profiles.io import Profile
+from analysis.transparency.design import WallDesign
+from analysis.transparency.settings import IndexResult, OptimalDamping, RobustnessPeak, StepResponse, TradeoffCurves, WallSettings
 
-from ..compute_graph import ComputeGraph, Node
-from ..model import DEVICE_FIELDS, ProfileModel
-from ..views.base import PlotView, fmt, plain
-from ..views.curves_plot import CurvesPlot
-from ..widgets.choice_field import ChoiceField
-from ..widgets.int_field import IntField
-from ..widgets.log_slider_field import LogSliderField
-from ..widgets.section_binding import SectionBinding
-from .base import AnalysisTab, AppContext
+from app.core.compute_graph import ComputeGraph, Node
+from app.core.model import DEVICE_FIELDS, ProfileModel
+from app.views.base import PlotView, fmt, plain
+from app.views.curves_plot import CurvesPlot
+from app.widgets.choice_field import ChoiceField
+from app.widgets.int_field import IntField
+from app.widgets.log_slider_field import LogSliderField
+from app.widgets.section_binding import SectionBinding
+from app.tabs.base import AnalysisTab, AppContext
 
 __all__ = ["TransparencyTab", "TAB", "wall_settings", "wall_design", "WallPoint", "WallTradeoff",
            "WallAdmittances", "admittance_grid", "DEFAULT_BC"]
@@ -164,7 +164,7 @@ class TransparencyTab(AnalysisTab):
         graph.add(_at_bc_node("wall_step", lambda p, pull, bc: pull("wall_design").step_response(bc)))
         graph.add(_at_bc_node("wall_admittance", _admittance))
         try:
-            from ..widgets.task_progress import TASK_TITLES
+            from app.widgets.task_progress import TASK_TITLES
 
             TASK_TITLES.setdefault("wall_tradeoff", "Computing J(B_c) and ‖L‖∞(B_c)")
         except ImportError:  # pragma: no cover

@@ -16,7 +16,7 @@ import pyqtgraph as pg
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QSizePolicy, QWidget
 
-from .base import PlotView, Series, clean_xy
+from app.views.base import PlotView, Series, clean_xy
 
 __all__ = ["CurvesPlot"]
 

@@ -12,8 +12,8 @@ import pyqtgraph as pg
 from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QWidget
 
-from ..compute_graph import ChartResult
-from .base import PlotView, Series, clean_xy, mark_design_point, plain
+from app.core.compute_graph import ChartResult
+from app.views.base import PlotView, Series, clean_xy, mark_design_point, plain
 
 __all__ = ["DesignChart"]
 

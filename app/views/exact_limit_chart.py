@@ -16,8 +16,8 @@ from PySide6.QtWidgets import QWidget
 
 from analysis.sampled import CriticalChart, CriticalMassChart
 
-from ..compute_graph import ChartResult
-from .base import PlotView, Series, clean_xy, mark_design_point, plain
+from app.core.compute_graph import ChartResult
+from app.views.base import PlotView, Series, clean_xy, mark_design_point, plain
 
 __all__ = ["ExactLimitChart"]
 

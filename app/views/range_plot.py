@@ -10,7 +10,7 @@ from PySide6.QtWidgets import QGraphicsPathItem, QWidget
 
 from analysis import StabilityResult
 
-from .base import PlotView, Series, clean_xy, plain
+from app.views.base import PlotView, Series, clean_xy, plain
 
 __all__ = ["RangePlot"]
 

@@ -18,7 +18,7 @@ from PySide6.QtWidgets import QWidget
 
 from analysis.sampled import StabilityMap
 
-from .base import PlotView, Series, plain
+from app.views.base import PlotView, Series, plain
 
 __all__ = ["StabilityMapView", "PARAMETER_LABELS", "radius_colormap"]
 

@@ -16,7 +16,7 @@ from PySide6.QtWidgets import QWidget
 
 from analysis import StabilityResult
 
-from .base import PlotView, Series, clean_xy, plain
+from app.views.base import PlotView, Series, clean_xy, plain
 
 __all__ = ["StabilityPlot", "negative_runs"]
 

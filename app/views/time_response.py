@@ -16,7 +16,7 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
 from analysis.sampled import SimulationResult, Verdict
 
-from .base import PlotView, Series, plain
+from app.views.base import PlotView, Series, plain
 
 __all__ = ["TimePlot", "TimeResponse", "verdict_text", "VERDICT_COLORS"]
 

@@ -9,7 +9,7 @@ from PySide6.QtWidgets import QFrame, QGridLayout, QHBoxLayout, QLabel, QWidget
 
 from analysis import StabilityResult
 
-from .base import fmt
+from app.views.base import fmt
 
 __all__ = ["VerdictView"]
 

@@ -12,7 +12,7 @@ from collections.abc import Callable, Iterable
 from PySide6.QtCore import Qt, Slot
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QWidget
 
-from ..model import ProfileModel
+from app.core.model import ProfileModel
 
 __all__ = ["BoundField"]
 

@@ -7,8 +7,8 @@ from collections.abc import Callable, Iterable, Sequence
 from PySide6.QtCore import Slot
 from PySide6.QtWidgets import QComboBox, QWidget
 
-from ..model import ProfileModel
-from .bound_field import BoundField
+from app.core.model import ProfileModel
+from app.widgets.bound_field import BoundField
 
 __all__ = ["ChoiceField"]
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 from PySide6.QtCore import Slot
 from PySide6.QtWidgets import QButtonGroup, QHBoxLayout, QRadioButton, QWidget
 
-from ..commands import Editor
-from ..model import ProfileModel
+from app.core.commands import Editor
+from app.core.model import ProfileModel
 
 __all__ = ["DisplaySelector"]
 

@@ -6,8 +6,8 @@ from collections.abc import Callable, Iterable
 
 from PySide6.QtWidgets import QSpinBox, QWidget
 
-from ..model import ProfileModel
-from .bound_field import BoundField
+from app.core.model import ProfileModel
+from app.widgets.bound_field import BoundField
 
 __all__ = ["IntField"]
 

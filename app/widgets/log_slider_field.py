@@ -15,8 +15,8 @@ from typing import Protocol
 from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QGridLayout, QLabel, QSizePolicy, QSlider, QWidget
 
-from ..model import ProfileModel
-from .sci_spin_box import SciSpinBox
+from app.core.model import ProfileModel
+from app.widgets.sci_spin_box import SciSpinBox
 
 __all__ = ["LogSliderField", "SLIDER_STEPS"]
 

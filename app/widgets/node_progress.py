@@ -9,7 +9,7 @@ from __future__ import annotations
 from PySide6.QtCore import Signal, Slot
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QWidget
 
-from ..compute_graph import ComputeGraph
+from app.core.compute_graph import ComputeGraph
 
 __all__ = ["NodeProgress"]
 

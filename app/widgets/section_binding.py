@@ -10,9 +10,9 @@ from collections.abc import Callable
 
 from analysis import ValidationError
 
-from ..commands import Editor, describe_error
-from ..model import ProfileModel
-from .log_slider_field import LogSliderField
+from app.core.commands import Editor, describe_error
+from app.core.model import ProfileModel
+from app.widgets.log_slider_field import LogSliderField
 
 __all__ = ["SectionBinding"]
 

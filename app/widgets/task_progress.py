@@ -9,7 +9,7 @@ from __future__ import annotations
 from PySide6.QtCore import Slot
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QSizePolicy, QWidget
 
-from ..compute_graph import ComputeGraph
+from app.core.compute_graph import ComputeGraph
 
 __all__ = ["TaskProgress", "TASK_TITLES"]
 

@@ -17,7 +17,7 @@ import pytest  # noqa: E402
 from PySide6.QtCore import QSettings  # noqa: E402
 
 import app.qt_compat  # noqa: E402,F401 - PySide6 6.12 on CPython 3.11 (see the module)
-from analysis.profiles import bundled_profiles, load_profile  # noqa: E402
+from analysis.profiles.io import bundled_profiles, load_profile  # noqa: E402
 
 # Nothing a test does may touch the user's real preferences.
 QSettings.setDefaultFormat(QSettings.Format.IniFormat)
@@ -34,7 +34,7 @@ def _app_names(qapp):
 
 @pytest.fixture
 def settings(tmp_path):
-    from app.settings import Settings
+    from app.core.settings import Settings
 
     QSettings.setPath(QSettings.Format.IniFormat, QSettings.Scope.UserScope, str(tmp_path / "user"))
     return Settings(QSettings(str(tmp_path / "zwidth-test.ini"), QSettings.Format.IniFormat))
@@ -46,7 +46,7 @@ def hbfd_profile():
 
 
 def _main_window(qtbot, settings, profile):
-    from app.main_window import MainWindow
+    from app.window.main_window import MainWindow
 
     w = MainWindow(settings=settings, profile=profile)
     w.resize(1400, 900)

@@ -9,7 +9,7 @@ import pytest
 from PySide6.QtWidgets import QMessageBox
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay
-from analysis.profiles import bundled_profiles, load_profile, profile_to_dict
+from analysis.profiles.io import bundled_profiles, load_profile, profile_to_dict
 from app.tabs.stability_tab import StabilityTab
 from app.views.base import clean_xy
 
@@ -207,7 +207,7 @@ def test_save_and_reopen_round_trip(win, qtbot, tmp_path, settings):
     assert "mine.json" in win.windowTitle()
     saved = json.loads(open(path).read())
     assert saved == json.loads(json.dumps(profile_to_dict(win.model.profile)))
-    from app.main_window import MainWindow
+    from app.window.main_window import MainWindow
 
     other = MainWindow(settings=settings)
     qtbot.addWidget(other)
@@ -308,7 +308,7 @@ def test_run_gui_opens_profile_from_command_line(qapp, tmp_path, monkeypatch):
     from PySide6.QtCore import QTimer
     from PySide6.QtWidgets import QApplication
 
-    from app import main_window
+    from app.window import main_window
 
     p = load_profile(bundled_profiles()["rigid"])
     path = tmp_path / "cmdline.json"

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from analysis.observer import DisturbanceObserver, ObserverSettings, TwoAxisObserver
+from analysis.transparency.observer import DisturbanceObserver, ObserverSettings, TwoAxisObserver
 from app.tabs.observer_tab import NODES, OBSERVER_W, ObserverTab
 
 

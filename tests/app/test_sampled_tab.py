@@ -7,7 +7,7 @@ import time
 import numpy as np
 import pytest
 
-from analysis.profile_sections import SimulationSection
+from analysis.profiles.sections import SimulationSection
 from analysis.sampled import (
     SimulationOptions,
     critical_stiffness,

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from analysis.transparency import WallDesign
-from analysis.wall import WallSettings
+from analysis.transparency.design import WallDesign
+from analysis.transparency.settings import WallSettings
 from app.tabs.transparency_tab import NODES, TransparencyTab, admittance_grid
 
 

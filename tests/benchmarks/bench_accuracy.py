@@ -23,9 +23,9 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay, grids
-from analysis.impedance import kc_upper
+from analysis.twoport.impedance import kc_upper
 
-from .common import hbfd, timeit
+from tests.benchmarks.common import hbfd, timeit
 
 RATIOS = (0.1, 1e-2, 1e-3, 1e-4)
 GRIDS = (100, 300, 1000, 3000, 10000)
@@ -116,7 +116,7 @@ def _bc_rows(quick: bool) -> tuple[list[dict], dict]:
 def _bound_rows(quick: bool) -> list[dict]:
     from tests import reference as ref
 
-    from .bench_core import control_route
+    from tests.benchmarks.bench_core import control_route
 
     dev = hbfd()
     w = np.geomspace(1e-4, dev.nyquist * 0.999, 12 if quick else 40)

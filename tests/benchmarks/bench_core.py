@@ -15,9 +15,9 @@ import tracemalloc
 import numpy as np
 
 from analysis import ImpedanceDisplay
-from analysis.discretize import hold_factor
+from analysis.chain.discretize import hold_factor
 
-from .common import hbfd, long_chain, timeit
+from tests.benchmarks.common import hbfd, long_chain, timeit
 
 
 def control_route(device, w: np.ndarray):

@@ -26,9 +26,9 @@ def _window():
 
     QSettings.setDefaultFormat(QSettings.Format.IniFormat)
     QSettings.setPath(QSettings.Format.IniFormat, QSettings.Scope.UserScope, tempfile.mkdtemp())
-    from analysis.profiles import load_profile
+    from analysis.profiles.io import load_profile
     from analysis.resources import resource_path
-    from app.main_window import MainWindow, make_application
+    from app.window.main_window import MainWindow, make_application
 
     app = QApplication.instance() or make_application([])
     win = MainWindow(profile=load_profile(resource_path("profiles", "hbfd.json")))

@@ -25,7 +25,7 @@ from analysis.sampled import (
     worst_case,
 )
 
-from .common import hbfd, timeit
+from tests.benchmarks.common import hbfd, timeit
 
 
 def thousand_terminations() -> list[Termination]:

@@ -14,7 +14,7 @@ import numpy as np
 
 from analysis import ImpedanceDisplay
 
-from .common import hbfd, long_chain, timeit
+from tests.benchmarks.common import hbfd, long_chain, timeit
 
 
 def _peak_mib(fn) -> float:

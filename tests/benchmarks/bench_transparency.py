@@ -15,10 +15,10 @@ import math
 import numpy as np
 from scipy import integrate, optimize
 
-from analysis.hold_models import hold_response
-from analysis.transparency import WallDesign
+from analysis.transparency.holds import hold_response
+from analysis.transparency.design import WallDesign
 
-from .common import timeit
+from tests.benchmarks.common import timeit
 
 PAPER = dict(mass=0.01, damping=0.022, wall_stiffness=1000.0, wall_damping=1.0, sample_time=1e-3,
              weight_cutoff=100.0)

@@ -1,0 +1,234 @@
+"""The lumped-mass device chain of Adams, Moreyra & Hannaford, eq. (25)-(28).
+
+Masses ``m[0] .. m[n-1]`` sit in a chain.  Element ``i`` (spring ``k[i]``, damper ``b[i]``)
+joins mass ``i`` and mass ``i+1``.  Mass ``i`` may also have a damper ``g[i]`` to ground
+(the paper's rigid-body damping ``b4`` is ``g[n-1]``).  The human grasps mass 0 (force
+``F_h``); the actuator drives mass ``n-1`` with ``-F_d`` (eq. 25).  The outputs are
+``v_h = x0'`` and ``-v_d = -x_{n-1}'`` (eq. 26).
+
+The force gauge sits on element ``sensor_element`` (default 0, the element next to the
+handle) and measures ``F_meas = k_s (x_s - x_{s+1}) + b_s (x_s' - x_{s+1}')``, the reading of
+eq. (27) fixed by the design notes (positive and equal to ``F_h`` at DC).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import linalg
+
+from analysis.errors import ValidationError
+
+__all__ = ["Device", "damping_from_ratio", "ratio_from_damping"]
+
+
+def damping_from_ratio(stiffness: float, mass_a: float, mass_b: float, ratio: float) -> float:
+    """Element damping from a damping ratio, eq. (28) with the reduced mass.
+
+    ``b = 2 * ratio * sqrt(k * mu)`` with ``mu = m_a m_b / (m_a + m_b)``.
+    """
+    mu = mass_a * mass_b / (mass_a + mass_b)
+    return 2.0 * ratio * math.sqrt(stiffness * mu)
+
+
+def ratio_from_damping(stiffness: float, mass_a: float, mass_b: float, damping: float) -> float:
+    """Inverse of :func:`damping_from_ratio`."""
+    mu = mass_a * mass_b / (mass_a + mass_b)
+    return damping / (2.0 * math.sqrt(stiffness * mu))
+
+
+def _vector(name: str, values, length: int | None) -> np.ndarray:
+    try:
+        arr = np.array(values, dtype=float, copy=True).reshape(-1)
+    except (TypeError, ValueError) as exc:
+        raise ValidationError(name, "a list of real numbers", values) from exc
+    if length is not None and arr.size != length:
+        raise ValidationError(name, f"exactly {length} values", list(np.atleast_1d(values)))
+    arr.setflags(write=False)
+    return arr
+
+
+def _check(name: str, arr: np.ndarray, positive: bool) -> None:
+    allowed = "> 0 and finite" if positive else ">= 0 and finite"
+    for i, x in enumerate(arr):
+        if not math.isfinite(x) or (x <= 0 if positive else x < 0):
+            raise ValidationError(name, allowed, float(x), i)
+
+
+@dataclass(frozen=True, eq=False)
+class Device:
+    """A validated lumped-mass chain with its sample period (eq. 25, 28).
+
+    Parameters
+    ----------
+    masses:
+        ``n >= 1`` masses in kg, handle first, actuator last.
+    stiffnesses, dampings:
+        ``n - 1`` element stiffnesses (N/m) and dampings (N s/m); element ``i`` joins mass
+        ``i`` and ``i + 1``.
+    ground_dampings:
+        ``n`` dampers from each mass to ground (N s/m); default all zero.
+    sensor_element:
+        Element carrying the force gauge (0 = next to the handle).
+    sample_time:
+        Sample period ``T`` in s.
+    band_min:
+        Lower edge of the analysis band in rad/s; the band is ``[band_min, pi/T)``.
+    """
+
+    masses: np.ndarray
+    stiffnesses: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    dampings: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    ground_dampings: np.ndarray | None = None
+    sensor_element: int = 0
+    sample_time: float = 1e-3
+    band_min: float = 1.0
+
+    def __post_init__(self) -> None:
+        m = _vector("masses", self.masses, None)
+        n = m.size
+        if n < 1:
+            raise ValidationError("masses", "at least one mass", [])
+        k = _vector("stiffnesses", self.stiffnesses, n - 1)
+        b = _vector("dampings", self.dampings, n - 1)
+        g = _vector("ground_dampings", np.zeros(n) if self.ground_dampings is None else self.ground_dampings, n)
+        _check("masses", m, positive=True)
+        _check("stiffnesses", k, positive=True)
+        _check("dampings", b, positive=False)
+        _check("ground_dampings", g, positive=False)
+        T = self.sample_time
+        if isinstance(T, bool) or not isinstance(T, (int, float, np.floating, np.integer)) or not math.isfinite(T) or T <= 0:
+            raise ValidationError("sample_time", "> 0 and finite (s)", T)
+        s = self.sensor_element
+        if isinstance(s, bool) or not isinstance(s, (int, np.integer)) or not (0 <= s <= max(n - 2, 0)) or n < 2 and s != 0:
+            raise ValidationError("sensor_element", f"an integer in [0, {max(n - 2, 0)}]", s)
+        wmin = self.band_min
+        nyq = math.pi / float(T)
+        if isinstance(wmin, bool) or not isinstance(wmin, (int, float, np.floating, np.integer)) or not math.isfinite(wmin) or not (0 < wmin < nyq):
+            raise ValidationError("band_min", f"> 0 and < Nyquist = {nyq:.6g} rad/s", wmin)
+        object.__setattr__(self, "masses", m)
+        object.__setattr__(self, "stiffnesses", k)
+        object.__setattr__(self, "dampings", b)
+        object.__setattr__(self, "ground_dampings", g)
+        object.__setattr__(self, "sample_time", float(T))
+        object.__setattr__(self, "sensor_element", int(s))
+        object.__setattr__(self, "band_min", float(wmin))
+
+    # -- identity -----------------------------------------------------------------
+    def key(self) -> tuple:
+        """A hashable key of every parameter (used for caching)."""
+        return (
+            self.masses.tobytes(),
+            self.stiffnesses.tobytes(),
+            self.dampings.tobytes(),
+            self.ground_dampings.tobytes(),
+            self.sensor_element,
+            self.sample_time,
+            self.band_min,
+        )
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Device) and self.key() == other.key()
+
+    def __hash__(self) -> int:
+        return hash(self.key())
+
+    # -- derived quantities --------------------------------------------------------
+    @property
+    def n(self) -> int:
+        """Number of masses."""
+        return int(self.masses.size)
+
+    @property
+    def nyquist(self) -> float:
+        """Nyquist frequency pi/T in rad/s."""
+        return math.pi / self.sample_time
+
+    @property
+    def total_mass(self) -> float:
+        return float(self.masses.sum())
+
+    @property
+    def total_ground_damping(self) -> float:
+        return float(self.ground_dampings.sum())
+
+    @property
+    def static_compliance(self) -> float:
+        """Series compliance of the chain springs, sum 1/k_i (m/N)."""
+        return float(np.sum(1.0 / self.stiffnesses)) if self.n > 1 else 0.0
+
+    @property
+    def damping_ratios(self) -> np.ndarray:
+        """Damping ratio of each element by eq. (28) with the reduced mass."""
+        m = self.masses
+        mu = m[:-1] * m[1:] / (m[:-1] + m[1:])
+        return self.dampings / (2.0 * np.sqrt(self.stiffnesses * mu))
+
+    def replace(self, **changes) -> Device:
+        """A copy with some parameters changed (validated again)."""
+        data = dict(
+            masses=self.masses,
+            stiffnesses=self.stiffnesses,
+            dampings=self.dampings,
+            ground_dampings=self.ground_dampings,
+            sensor_element=self.sensor_element,
+            sample_time=self.sample_time,
+            band_min=self.band_min,
+        )
+        data.update(changes)
+        return Device(**data)
+
+    @classmethod
+    def from_damping_ratios(
+        cls,
+        masses,
+        stiffnesses,
+        ratios,
+        ground_dampings=None,
+        **kwargs,
+    ) -> Device:
+        """Build a chain whose element dampings follow eq. (28) from damping ratios."""
+        m = np.asarray(masses, dtype=float).reshape(-1)
+        k = np.asarray(stiffnesses, dtype=float).reshape(-1)
+        r = np.broadcast_to(np.asarray(ratios, dtype=float), k.shape)
+        mu = m[:-1] * m[1:] / (m[:-1] + m[1:]) if m.size > 1 else np.zeros(0)
+        b = 2.0 * r * np.sqrt(k * mu)
+        return cls(masses=m, stiffnesses=k, dampings=b, ground_dampings=ground_dampings, **kwargs)
+
+    # -- matrices (eq. 25) ---------------------------------------------------------
+    def matrices(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Mass, damping and stiffness matrices of eq. (25)."""
+        n = self.n
+        M = np.diag(self.masses)
+        B = np.diag(self.ground_dampings.copy())
+        K = np.zeros((n, n))
+        for i in range(n - 1):
+            for mat, val in ((B, self.dampings[i]), (K, self.stiffnesses[i])):
+                mat[i, i] += val
+                mat[i + 1, i + 1] += val
+                mat[i, i + 1] -= val
+                mat[i + 1, i] -= val
+        return M, B, K
+
+    def undamped_modes(self, extra_stiffness: dict[int, float] | None = None, clamp: tuple[int, ...] = ()) -> np.ndarray:
+        """Undamped natural frequencies (rad/s) of the chain.
+
+        ``extra_stiffness`` adds springs to ground at given nodes; ``clamp`` removes nodes
+        (held fixed).  Rigid-body (zero) modes are dropped.  Used to place frequency grid
+        points on resonances and antiresonances.
+        """
+        M, _, K = self.matrices()
+        K = K.copy()
+        for node, kval in (extra_stiffness or {}).items():
+            K[node, node] += kval
+        keep = [i for i in range(self.n) if i not in clamp]
+        if not keep:
+            return np.zeros(0)
+        Mk = M[np.ix_(keep, keep)]
+        Kk = K[np.ix_(keep, keep)]
+        ev = linalg.eigh(Kk, Mk, eigvals_only=True)
+        scale = max(float(np.max(np.abs(ev))), 1e-300)
+        ev = ev[ev > 1e-10 * scale]
+        return np.sqrt(ev)

@@ -1,0 +1,195 @@
+"""Device profiles: a device, its sample period and band, and the controller settings, as JSON.
+
+A profile file looks like this (schema version 3; the optional sections ``wall``,
+``observer`` (schema 2) and ``simulation`` (schema 3) are described in
+:mod:`analysis.profile_sections`)::
+
+    {"schema_version": 3, "name": "HBFD", "notes": "...",
+     "device": {"masses": [...], "stiffnesses": [...], "dampings": [...],
+                "ground_dampings": [...], "sensor_element": 0},
+     "sample_time": 0.001, "band": {"min": 1.0},
+     "display": "impedance",
+     "impedance_coupling": {"stiffness": 50000.0, "damping": 100.0},
+     "admittance_coupling": {"mass": 8.0, "damping": 400.0},
+     "pd_gains": {"stiffness": 50000.0, "damping": 100.0}}
+
+``device`` gives either ``dampings`` (N s/m) or ``damping_ratios`` (eq. 28 with the reduced
+mass), exactly one of them.  ``notes``, ``ground_dampings`` (default zeros),
+``sensor_element`` (default 0) and ``band`` (default ``{"min": 1.0}``) are optional.  Unknown
+keys are rejected, so that a misspelt key is not silently ignored.
+
+Every problem with a file is reported as a :class:`ProfileError` naming the file and the JSON
+path of the offending value, e.g. ``hbfd.json: $.device.masses[2]: expected a number > 0 and
+finite, got -1.0``.  Older schema versions are brought up to date by :data:`MIGRATIONS`.
+
+The work is split by what it holds: :mod:`analysis.profile_errors` (:class:`ProfileError`),
+:mod:`analysis.profile_model` (the :class:`Profile` record), :mod:`analysis.profile_fields`
+(checking the fields of a current-schema dict), :mod:`analysis.profile_files` (strict JSON
+reading, atomic writing, bundled presets) and :mod:`analysis.profile_sections` (the optional
+sections).  This module holds the schema version, the migrations and the public entry points,
+and re-exports the public names of the others.
+
+Numerics only: this module never imports Qt.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import os
+from collections.abc import Callable, Mapping
+
+from analysis.profiles.errors import ProfileError
+from analysis.profiles.fields import _build_current
+from analysis.profiles.files import _read_json, _target_path, _write_atomically, bundled_profiles
+from analysis.profiles.model import DISPLAYS, Profile
+from analysis.profiles.sections import MIGRATION_STEPS, sections_to_dict
+
+__all__ = [
+    "DISPLAYS",
+    "MIGRATIONS",
+    "SCHEMA_VERSION",
+    "Profile",
+    "ProfileError",
+    "bundled_profiles",
+    "load_profile",
+    "migrate",
+    "profile_from_dict",
+    "profile_to_dict",
+    "save_profile",
+]
+
+#: Schema version written by :func:`save_profile` and the newest one :func:`load_profile` reads.
+SCHEMA_VERSION = 3
+
+#: ``MIGRATIONS[v]`` turns a schema-``v`` profile dict into a schema-``v + 1`` one.
+MIGRATIONS: dict[int, Callable[[dict], dict]] = dict(MIGRATION_STEPS)
+
+
+# -- schema versions -----------------------------------------------------------------------------
+
+
+def _schema_version(data: Mapping) -> int:
+    expected = (
+        f"the integer schema version {SCHEMA_VERSION}"
+        if SCHEMA_VERSION == 1
+        else f"an integer schema version from 1 to {SCHEMA_VERSION}"
+    )
+    if "schema_version" not in data:
+        raise ProfileError.at("$.schema_version", expected)
+    v = data["schema_version"]
+    if isinstance(v, bool) or not isinstance(v, int) or v < 1:
+        raise ProfileError.at("$.schema_version", expected, v)
+    if v > SCHEMA_VERSION:
+        raise ProfileError.at(
+            "$.schema_version",
+            f"schema version <= {SCHEMA_VERSION} (the file was written by a newer zwidth)",
+            v,
+        )
+    return v
+
+
+def migrate(data: Mapping) -> dict:
+    """Bring a profile dict of any supported schema version up to :data:`SCHEMA_VERSION`.
+
+    Applies ``MIGRATIONS[v]`` for ``v = data["schema_version"], ..., SCHEMA_VERSION - 1``; the
+    input is not modified.  Raises ProfileError for a missing, unknown or newer version or a
+    failing migration.
+    """
+    if not isinstance(data, Mapping):
+        raise ProfileError.at("$", "a JSON object", data)
+    v = _schema_version(data)
+    if v == SCHEMA_VERSION:
+        return dict(data)
+    out = copy.deepcopy(dict(data))
+    while v < SCHEMA_VERSION:
+        step = MIGRATIONS.get(v)
+        if step is None:
+            raise ProfileError(
+                f"no migration from schema version {v} to {v + 1}", json_path="$.schema_version"
+            )
+        try:
+            out = step(out)
+        except ProfileError:
+            raise
+        except Exception as exc:  # a malformed old file makes the migration fail
+            raise ProfileError(
+                f"cannot migrate from schema version {v} to {v + 1}: {type(exc).__name__}: {exc}",
+                json_path="$",
+            ) from exc
+        if not isinstance(out, dict):
+            raise ProfileError(f"migration from schema version {v} did not return an object", json_path="$")
+        v += 1
+        out["schema_version"] = v
+    return out
+
+
+# -- dict <-> Profile ----------------------------------------------------------------------------
+
+
+def _build(data: object) -> Profile:
+    if not isinstance(data, Mapping):
+        raise ProfileError.at("$", "a JSON object", data)
+    return _build_current(migrate(data))
+
+
+def profile_from_dict(data: object, path: str | os.PathLike | None = None) -> Profile:
+    """Validate a parsed profile (any schema version) and build the :class:`Profile`.
+
+    ``path`` is only used in error messages.  Raises :class:`ProfileError` and nothing else.
+    """
+    try:
+        return _build(data)
+    except ProfileError as err:
+        raise err.with_path(path) from err.__cause__
+    except RecursionError:
+        raise ProfileError("the data is nested too deeply", path=path) from None
+    except Exception as exc:  # noqa: BLE001 - the promise is: ProfileError and nothing else
+        raise ProfileError(f"invalid profile ({type(exc).__name__}: {exc})", path=path) from exc
+
+
+def profile_to_dict(profile: Profile) -> dict:
+    """The JSON-ready dict of a profile (current schema, element dampings in N s/m)."""
+    dev = profile.device
+    return {
+        "schema_version": SCHEMA_VERSION,
+        "name": profile.name,
+        "notes": profile.notes,
+        "device": {
+            "masses": [float(x) for x in dev.masses],
+            "stiffnesses": [float(x) for x in dev.stiffnesses],
+            "dampings": [float(x) for x in dev.dampings],
+            "ground_dampings": [float(x) for x in dev.ground_dampings],
+            "sensor_element": int(dev.sensor_element),
+        },
+        "sample_time": float(dev.sample_time),
+        "band": {"min": float(dev.band_min)},
+        "display": profile.display,
+        "impedance_coupling": {"stiffness": profile.kc, "damping": profile.bc},
+        "admittance_coupling": {"mass": profile.mc, "damping": profile.bc_adm},
+        "pd_gains": {"stiffness": profile.kp, "damping": profile.kd},
+        **sections_to_dict(profile.wall, profile.observer, profile.simulation),
+    }
+
+
+# -- files ---------------------------------------------------------------------------------------
+
+
+def load_profile(path: str | os.PathLike) -> Profile:
+    """Read and validate a profile file.  Raises :class:`ProfileError` and nothing else."""
+    return profile_from_dict(_read_json(path), path)
+
+
+def save_profile(profile: Profile, path: str | os.PathLike) -> None:
+    """Write ``profile`` to ``path`` atomically.
+
+    The JSON goes to a temporary file in the same directory, which is flushed, fsynced and then
+    renamed over ``path``; on any failure the temporary file is removed and an existing file at
+    ``path`` is left untouched.  Raises :class:`ProfileError` (with the OSError as its cause).
+    """
+    target = _target_path(path)
+    try:
+        text = json.dumps(profile_to_dict(profile), indent=2, allow_nan=False) + "\n"
+    except Exception as exc:  # noqa: BLE001
+        raise ProfileError(f"cannot save: {type(exc).__name__}: {exc}", path=path) from exc
+    _write_atomically(target, text, path)

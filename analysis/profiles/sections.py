@@ -1,0 +1,119 @@
+"""Optional profile sections added by later schema versions.
+
+* schema 2: ``wall`` (the wall-controller design of Eom, Suh & Yi, :class:`WallSettings`) and
+  ``observer`` (the disturbance observer, :class:`ObserverSettings`);
+* schema 3: ``simulation`` (``{"options": SimulationOptions, "scenario": Scenario}``, the
+  sampled-data simulator's settings and the chosen scenario).
+
+Every section is optional; an older file simply has none of them, so the migrations only
+raise the version number.  Errors name the JSON path, e.g. ``$.wall.mass``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from analysis.errors import ValidationError
+from analysis.transparency.observer import ObserverSettings
+from analysis.sampled.scenarios import Scenario, SimulationOptions
+from analysis.transparency.settings import WallSettings
+
+__all__ = ["SECTION_KEYS", "MIGRATION_STEPS", "SimulationSection", "parse_sections", "sections_to_dict"]
+
+SECTION_KEYS = ("wall", "observer", "simulation")
+
+
+@dataclass(frozen=True)
+class SimulationSection:
+    """The simulator's options and the scenario saved with a profile."""
+
+    options: SimulationOptions
+    scenario: Scenario
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.options, SimulationOptions):
+            raise ValidationError("options", "SimulationOptions", self.options)
+        if not isinstance(self.scenario, Scenario):
+            raise ValidationError("scenario", "a Scenario", self.scenario)
+
+
+def _to_2(data: dict) -> dict:
+    """Schema 1 -> 2: adds the optional ``wall`` and ``observer`` sections (nothing to change)."""
+    return data
+
+
+def _to_3(data: dict) -> dict:
+    """Schema 2 -> 3: adds the optional ``simulation`` section (nothing to change)."""
+    return data
+
+
+MIGRATION_STEPS = {1: _to_2, 2: _to_3}
+
+
+def _fail(json_path: str, expected: str, got: object):
+    from analysis.profiles.io import ProfileError  # profiles imports this module
+
+    return ProfileError.at(json_path, expected, got)
+
+
+def _section(kind: str, jp: str, value: object, cls):
+    try:
+        return cls.from_dict(value)
+    except ValidationError as err:
+        where = jp
+        if err.field and err.field not in (kind, "transparency", "observer", "simulation options", "scenario"):
+            where += f".{err.field}"
+        if err.index is not None:
+            where += f"[{err.index}]"
+        raise _fail(where, err.allowed, err.value) from err
+    except (TypeError, ValueError) as exc:
+        raise _fail(jp, f"a valid {kind} section ({exc})", value) from exc
+
+
+def parse_sections(data: Mapping) -> dict[str, Any]:
+    """The optional sections of a (migrated) profile dict as settings objects or ``None``."""
+    out: dict[str, Any] = {"wall": None, "observer": None, "simulation": None}
+    if "wall" in data:
+        out["wall"] = _section("wall", "$.wall", data["wall"], WallSettings)
+    if "observer" in data:
+        out["observer"] = _section("observer", "$.observer", data["observer"], ObserverSettings)
+    if "simulation" in data:
+        sim = data["simulation"]
+        if not isinstance(sim, Mapping):
+            raise _fail("$.simulation", "a JSON object with keys options and scenario", sim)
+        unknown = set(sim) - {"options", "scenario"}
+        if unknown:
+            raise _fail(f"$.simulation.{sorted(map(str, unknown))[0]}", "no such key (options, scenario)", None)
+        options = _section("simulation options", "$.simulation.options", sim.get("options", {}),
+                           SimulationOptions)
+        scenario = _section("scenario", "$.simulation.scenario", sim.get("scenario", {}), Scenario)
+        out["simulation"] = SimulationSection(options=options, scenario=scenario)
+    return out
+
+
+def _plain(value: object) -> object:
+    """JSON-safe copy (tuples to lists; non-finite floats are refused by allow_nan=False)."""
+    if isinstance(value, Mapping):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return json.dumps(value)  # "Infinity"-like text never reaches the file: settings encode inf
+    return value
+
+
+def sections_to_dict(wall, observer, simulation) -> dict[str, Any]:
+    """The JSON-ready sections that are present."""
+    out: dict[str, Any] = {}
+    if wall is not None:
+        out["wall"] = _plain(wall.to_dict())
+    if observer is not None:
+        out["observer"] = _plain(observer.to_dict())
+    if simulation is not None:
+        out["simulation"] = {"options": _plain(simulation.options.to_dict()),
+                             "scenario": _plain(simulation.scenario.to_dict())}
+    return out

@@ -1,0 +1,197 @@
+"""Rigid device with a discrete wall controller: exact passivity and stability limits.
+
+Passivity (Colgate & Schenkel)
+------------------------------
+J. E. Colgate and G. G. Schenkel, "Passivity of a class of sampled-data systems: application
+to haptic interfaces", *Journal of Robotic Systems* 14(1), 37-47, 1997: a rigid mass ``m``
+with physical damping ``b``, a zero-order hold on the force and a discrete controller
+``H(z)`` from sampled position to force (force on the device ``-H x``) is passive iff::
+
+    b > (T/2) / (1 - cos wT) * Re{(1 - e^{-jwT}) H(e^{jwT})}     for 0 <= w <= pi/T.
+
+The mass does not enter.  With ``theta = wT``, ``(1 - e^{-j theta})/(1 - cos theta) =
+j e^{-j theta/2} / sin(theta/2)``, which removes the 0/0 at DC.  For the virtual wall
+``H = z^{-d} (K + B (1 - z^{-1})/T)`` (spring, backward-difference damper, ``d`` samples of
+delay) the condition is, exactly::
+
+    b >= K (T/2) sin((d + 1/2) theta) / sin(theta/2) - B cos((d + 1) theta)   for all theta,
+
+which gives the familiar ``b > K T/2 + |B|`` for ``d = 0`` and ``K < b / (T (d + 1/2))``
+for ``B = 0`` (the Dirichlet-kernel bound ``sin((2d+1)x)/sin x <= 2d+1``).
+
+Stability
+---------
+Gil, Avello, Rubio and Flórez, "Stability analysis of a 1 DOF haptic interface using the
+Routh-Hurwitz criterion", *IEEE Trans. Control Systems Technology* 12(4), 583-588, 2004,
+derive the exact stability region of the same loop (no delay) from the characteristic
+polynomial ``z^{d+1} (z-1)(z-delta) + (K z + (B/T)(z-1)) (alpha z + beta)`` with
+``delta = e^{-bT/m}``, ``alpha = (T - (m/b)(1-delta))/b``, ``beta = ((m/b)(1-delta) - T delta)/b``;
+for small ``bT/m`` it reduces to ``K < 2 (b + B)/T``.  Hulin, Preusche and Hirzinger
+("Stability boundary for haptic rendering: influence of physical damping", IROS 2006) and
+Diolaiti et al. (IEEE Trans. Robotics 22(2), 2006) give the delayed form
+``K < (b + B) / (T (d + 1/2))``.  :func:`rigid_stability_polynomial` builds that
+polynomial (an independent route to the state-space loop of :mod:`analysis.sampled_loop`);
+:func:`linear_stability_limit` is the closed form, accurate when ``(b + B) T (d + 1/2) / m``
+is small (checked to 0.5 % in the tests).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+from scipy import optimize
+
+from analysis.errors import ValidationError
+
+__all__ = [
+    "required_damping",
+    "passivity_limit",
+    "passivity_closed_form",
+    "linear_stability_limit",
+    "rigid_stability_polynomial",
+    "virtual_wall",
+]
+
+
+def _pos(name: str, v: object, strict: bool = True) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+        raise ValidationError(name, "a real number", v)
+    x = float(v)
+    if not math.isfinite(x) or x < 0 or (strict and x == 0):
+        raise ValidationError(name, "> 0 and finite" if strict else ">= 0 and finite", v)
+    return x
+
+
+def _delay(d: object) -> int:
+    if isinstance(d, bool) or not isinstance(d, (int, np.integer)) or d < 0:
+        raise ValidationError("delay_samples", "an integer >= 0", d)
+    return int(d)
+
+
+def virtual_wall(stiffness: float, damping: float, sample_time: float, delay_samples: int = 0) -> Callable:
+    """``H(z) = z^{-d} (K + B (1 - z^{-1})/T)`` as a function of complex ``z``."""
+    d = _delay(delay_samples)
+
+    def H(z: np.ndarray) -> np.ndarray:
+        return z ** (-d) * (stiffness + damping * (1.0 - 1.0 / z) / sample_time)
+
+    return H
+
+
+def _theta_grid(points: int) -> np.ndarray:
+    return np.linspace(0.0, math.pi, points)[1:]
+
+
+def required_damping(H: Callable[[np.ndarray], np.ndarray], sample_time: float, points: int = 20001) -> tuple[float, float]:
+    """Smallest physical damping making the rigid device passive with controller ``H`` (Colgate-Schenkel).
+
+    Returns ``(b_required, w)``: the supremum over ``0 < w <= pi/T`` of the right-hand side
+    and the frequency (rad/s) where it is attained (dense grid plus Brent refinement).
+    """
+    T = _pos("sample_time", sample_time)
+
+    def rhs(th: np.ndarray) -> np.ndarray:
+        z = np.exp(1j * th)
+        return 0.5 * T * np.real(1j * np.exp(-0.5j * th) / np.sin(0.5 * th) * H(z))
+
+    th = _theta_grid(points)
+    vals = rhs(th)
+    i = int(np.argmax(vals))
+    best, arg = float(vals[i]), float(th[i])
+    lo, hi = th[max(i - 1, 0)], th[min(i + 1, th.size - 1)]
+    if hi > lo:
+        r = optimize.minimize_scalar(lambda x: -float(rhs(np.array([x]))[0]), bounds=(lo, hi), method="bounded",
+                                     options={"xatol": 1e-12})
+        if -r.fun > best:
+            best, arg = float(-r.fun), float(r.x)
+    # the DC end: the limit theta -> 0 of the right-hand side
+    dc = float(rhs(np.array([1e-9]))[0])
+    if dc > best:
+        best, arg = dc, 0.0
+    return best, arg / T
+
+
+def passivity_limit(mass: float, damping: float, sample_time: float, virtual_damping: float = 0.0,
+                    delay_samples: int = 0, points: int = 20001) -> float:
+    """Largest passive wall stiffness K (N/m) of a rigid device, exactly (Colgate & Schenkel 1997).
+
+    The controller is the virtual wall ``z^{-d} (K + B (1 - z^{-1})/T)``.  The criterion is
+    linear in K, ``b >= K a(theta) + c(theta)`` with ``a = (T/2) sin((d+1/2) theta)/sin(theta/2)``
+    and ``c = -B cos((d+1) theta)``, so ``K_max = min over a > 0 of (b - c)/a``, found on a dense
+    grid and refined.  ``mass`` is validated but does not enter (the criterion is independent of
+    it).  Returns NaN when no K >= 0 is passive (e.g. ``|B| >= b`` without delay).
+    """
+    _pos("mass", mass)
+    b = _pos("damping", damping, strict=False)
+    T = _pos("sample_time", sample_time)
+    if isinstance(virtual_damping, bool) or not isinstance(virtual_damping, (int, float, np.integer, np.floating)) \
+            or not math.isfinite(float(virtual_damping)):
+        raise ValidationError("virtual_damping", "a finite real number (N s/m)", virtual_damping)
+    B = float(virtual_damping)
+    d = _delay(delay_samples)
+
+    def parts(th):
+        a = 0.5 * T * np.sin((d + 0.5) * th) / np.sin(0.5 * th)
+        c = -B * np.cos((d + 1) * th)
+        return a, c
+
+    th = np.r_[1e-9, _theta_grid(points)]
+    a, c = parts(th)
+    if np.any((a <= 0) & (c > b)):
+        return math.nan
+    pos = a > 0
+    ratio = np.where(pos, (b - c) / np.where(pos, a, 1.0), np.inf)
+    i = int(np.argmin(ratio))
+    kmax = float(ratio[i])
+    if 0 < i < th.size - 1:
+        def f(x: float) -> float:
+            aa, cc = parts(np.array([x]))
+            return float((b - cc[0]) / aa[0]) if aa[0] > 0 else math.inf
+
+        r = optimize.minimize_scalar(f, bounds=(th[i - 1], th[i + 1]), method="bounded", options={"xatol": 1e-13})
+        kmax = min(kmax, float(r.fun))
+    return kmax if kmax >= 0 else math.nan
+
+
+def passivity_closed_form(damping: float, sample_time: float, virtual_damping: float = 0.0,
+                          delay_samples: int = 0) -> float:
+    """Closed forms of the Colgate-Schenkel limit: ``2(b - |B|)/T`` (d = 0), ``b/(T(d + 1/2))`` (B = 0)."""
+    d = _delay(delay_samples)
+    if d == 0:
+        k = 2.0 * (damping - abs(virtual_damping)) / sample_time
+        return k if k >= 0 else math.nan
+    if virtual_damping == 0:
+        return damping / (sample_time * (d + 0.5))
+    raise ValidationError("virtual_damping", "0 when delay_samples > 0 (no closed form; use passivity_limit)",
+                          virtual_damping)
+
+
+def linear_stability_limit(damping: float, sample_time: float, virtual_damping: float = 0.0,
+                           delay_samples: int = 0) -> float:
+    """``K_max ~ (b + B) / (T (d + 1/2))`` (Gil et al. 2004 for d = 0; Hulin et al. 2006 with delay)."""
+    d = _delay(delay_samples)
+    return (damping + virtual_damping) / (sample_time * (d + 0.5))
+
+
+def rigid_stability_polynomial(mass: float, damping: float, sample_time: float, stiffness: float,
+                               virtual_damping: float = 0.0, delay_samples: int = 0) -> np.ndarray:
+    """Characteristic polynomial (highest power first) of the rigid device with a virtual wall.
+
+    ``z^{d+1} (z - 1)(z - delta) + (K z + (B/T)(z - 1)) (alpha z + beta)``, from the ZOH
+    transfer function ``(alpha z + beta)/((z-1)(z-delta))`` of ``1/(s (m s + b))``.
+    """
+    m, b, T = float(mass), float(damping), float(sample_time)
+    K, B, d = float(stiffness), float(virtual_damping), _delay(delay_samples)
+    if b > 0:
+        delta = math.exp(-b * T / m)
+        one_minus = -math.expm1(-b * T / m)
+        alpha = (T - (m / b) * one_minus) / b
+        beta = ((m / b) * one_minus - T * delta) / b
+    else:  # double integrator
+        delta, alpha, beta = 1.0, T * T / (2 * m), T * T / (2 * m)
+    lhs = np.polymul(np.r_[1.0, np.zeros(d + 1)], np.polymul([1.0, -1.0], [1.0, -delta]))
+    ctrl = np.array([K + B / T, -B / T])
+    rhs = np.polymul(ctrl, [alpha, beta])
+    return np.polyadd(lhs, rhs)

@@ -1,0 +1,318 @@
+"""Disturbance observer of Eom, Suh & Yi, section 2 (Fig. 1, eq. 3-5), one and two axes.
+
+Structure (Fig. 1, per axis): the plant input is ``u_p = u - d_hat`` and the observer estimates
+``d_hat = Q (P_n^{-1} v - u_p)`` with the nominal plant ``P_n = 1/(M s + B)`` (``M``, ``B`` the
+"bar" values of eq. 3) and ``Q = (w_Q/(s + w_Q))^r`` (binomial low-pass, ``r >= 1`` so that
+``Q P_n^{-1}`` is proper).  With an input disturbance ``d`` (``v = P (u_p + d)``):
+
+* effective plant ``v/u = P P_n / (P_n (1 - Q) + P Q)`` -> ``P_n`` where ``Q ~ 1``;
+* disturbance to velocity ``v/d = (1 - Q) P P_n / (P_n (1 - Q) + P Q)`` (without observer: ``P``).
+
+The real plant may differ from the nominal one: ``P~`` of eq. (13) (``alpha``, ``beta``,
+``Delta``) or a device chain's handle admittance.
+
+Two axes (eq. 2-5): ``v = (M_x s + B_x)^{-1} F`` with coupled 2x2 ``M_x``, ``B_x``; one observer
+per axis with the nominal values measured with the other axis locked, i.e. the diagonal entries.
+With ``Z = M_x s + B_x``, ``Z_n = diag(Z)`` and the same ``Q`` on both axes the effective plant is
+``[(1 - Q) Z + Q Z_n]^{-1}``, so the cross-axis coupling ``v_y/F_x`` is divided by
+
+    ``ratio = (1 - Q) det Z / (z11 z22 - (1 - Q)^2 z12 z21)``
+
+(``~ r s / w_Q`` below ``w_Q``).  :meth:`TwoAxisObserver.coupling` evaluates the observer loop from
+its state-space realization (not from this formula), and the tests compare the two.  The commanded
+force ``u`` is the actuator force; the observer also rejects forces applied at the handle (``d``),
+which is why the paper closes the wall loop around the observer-compensated device.
+The observer is modelled in continuous time; time responses use the exact (matrix-exponential)
+discretization of the whole loop for a step input.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass, fields, replace
+
+import numpy as np
+from scipy import linalg
+
+from analysis.chain.device import Device
+from analysis.errors import ValidationError
+from analysis.transparency.five_bar import FIVE_BAR_PRESETS, five_bar_preset
+from analysis.transparency.design import handle_admittance
+from analysis.transparency.settings import _choice, _integer, _real
+
+__all__ = [
+    "ObserverSettings",
+    "DisturbanceObserver",
+    "ObserverResponse",
+    "TwoAxisObserver",
+    "CouplingResponse",
+    "TwoAxisStep",
+]
+
+PRESETS = tuple(FIVE_BAR_PRESETS)
+
+
+@dataclass(frozen=True)
+class ObserverSettings:
+    """Observer parameters (a profile section; ``to_dict``/``from_dict``).
+
+    ``nominal_mass``/``nominal_damping`` are the single-axis ``P_n``; ``order``/``cutoff`` the
+    binomial ``Q``; ``alpha``, ``beta``, ``delta`` perturb the real single-axis plant (eq. 13);
+    ``preset`` is the two-axis device; ``step_force`` (N, on x) and ``step_duration`` (s) the
+    cross-coupling time response.
+    """
+
+    nominal_mass: float = 0.01
+    nominal_damping: float = 0.022
+    order: int = 2
+    cutoff: float = 200.0
+    alpha: float = 0.5
+    beta: float = 0.5
+    delta: float = 1.0
+    preset: str = "five_bar_centre"
+    step_force: float = 1.0
+    step_duration: float = 0.2
+
+    def __post_init__(self) -> None:
+        s = object.__setattr__
+        s(self, "nominal_mass", _real("nominal_mass", self.nominal_mass, lo=0.0, lo_open=True,
+                                      allowed="> 0 and finite (kg)"))
+        s(self, "nominal_damping", _real("nominal_damping", self.nominal_damping, lo=0.0,
+                                         allowed=">= 0 and finite (N s/m)"))
+        s(self, "order", _integer("order", self.order, 1, 8))
+        s(self, "cutoff", _real("cutoff", self.cutoff, lo=0.0, lo_open=True, allowed="> 0 and finite (rad/s)"))
+        s(self, "alpha", _real("alpha", self.alpha, lo=0.0, hi=1.0, hi_open=True, allowed="in [0, 1)"))
+        s(self, "beta", _real("beta", self.beta, lo=0.0, hi=1.0, allowed="in [0, 1]"))
+        s(self, "delta", _real("delta", self.delta, lo=-1.0, hi=1.0, allowed="in [-1, 1]"))
+        _choice("preset", self.preset, PRESETS)
+        s(self, "step_force", _real("step_force", self.step_force, allowed="finite (N)"))
+        s(self, "step_duration", _real("step_duration", self.step_duration, lo=0.0, lo_open=True, hi=100.0,
+                                       allowed="in (0, 100] s"))
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+    @classmethod
+    def from_dict(cls, data: Mapping) -> ObserverSettings:
+        if not isinstance(data, Mapping):
+            raise ValidationError("observer", "an object", data)
+        known = {f.name for f in fields(cls)}
+        for key in data:
+            if key not in known:
+                raise ValidationError(str(key), "a known field: " + ", ".join(sorted(known)), data[key])
+        return cls(**dict(data))
+
+    def replace(self, **changes) -> ObserverSettings:
+        return replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class ObserverResponse:
+    """Single-axis frequency responses at ``w`` (rad/s): the real plant ``plant``, the nominal
+    ``nominal``, the ``effective`` plant through the observer, and disturbance-to-velocity with
+    and without the observer."""
+
+    w: np.ndarray
+    plant: np.ndarray
+    nominal: np.ndarray
+    effective: np.ndarray
+    q: np.ndarray
+    disturbance_with: np.ndarray
+    disturbance_without: np.ndarray
+
+
+@dataclass(frozen=True)
+class CouplingResponse:
+    """Two-axis responses at ``w``: ``v_y/F_x`` (coupling) and ``v_x/F_x`` (direct), without and
+    with the observers; ``ratio = with/without`` and its closed form (module doc)."""
+
+    w: np.ndarray
+    coupling_without: np.ndarray
+    coupling_with: np.ndarray
+    direct_without: np.ndarray
+    direct_with: np.ndarray
+    ratio: np.ndarray
+    ratio_closed_form: np.ndarray
+
+
+@dataclass(frozen=True)
+class TwoAxisStep:
+    """Commanded force step on x (``force`` N at ``t = 0``): positions and velocities of both
+    axes without and with the observers (exact discretization)."""
+
+    t: np.ndarray
+    force: float
+    x_without: np.ndarray
+    y_without: np.ndarray
+    vy_without: np.ndarray
+    x_with: np.ndarray
+    y_with: np.ndarray
+    vy_with: np.ndarray
+
+
+class DisturbanceObserver:
+    """One axis: ``P_n = 1/(M s + B)``, ``Q = (w_Q/(s + w_Q))^r``."""
+
+    def __init__(self, nominal_mass: float = 0.01, nominal_damping: float = 0.022, order: int = 2,
+                 cutoff: float = 200.0):
+        st = ObserverSettings(nominal_mass=nominal_mass, nominal_damping=nominal_damping, order=order,
+                              cutoff=cutoff)
+        self.settings = st
+
+    @classmethod
+    def from_settings(cls, st: ObserverSettings) -> DisturbanceObserver:
+        return cls(st.nominal_mass, st.nominal_damping, st.order, st.cutoff)
+
+    def q(self, s: np.ndarray) -> np.ndarray:
+        st = self.settings
+        return (st.cutoff / (np.asarray(s, dtype=complex) + st.cutoff)) ** st.order
+
+    def nominal(self, s: np.ndarray) -> np.ndarray:
+        st = self.settings
+        return 1.0 / (st.nominal_mass * np.asarray(s, dtype=complex) + st.nominal_damping)
+
+    def perturbed_plant(self, s: np.ndarray, alpha: float, beta: float, delta: float) -> np.ndarray:
+        """``P~`` of eq. (13) around the nominal values."""
+        st = self.settings
+        return 1.0 / (st.nominal_mass * (1 + alpha * delta) * np.asarray(s, dtype=complex)
+                      + st.nominal_damping * (1 + beta * delta))
+
+    def response(self, w, plant: np.ndarray | Device | None = None, alpha: float = 0.0, beta: float = 0.0,
+                 delta: float = 0.0) -> ObserverResponse:
+        """Responses at ``w`` for a real plant given as values ``P(jw)``, a :class:`Device` (handle
+        admittance), or ``None`` (eq. 13 with ``alpha``, ``beta``, ``delta``)."""
+        w = np.asarray(w, dtype=float)
+        if w.size and (not np.all(np.isfinite(w)) or np.any(w <= 0)):
+            raise ValidationError("frequency", "finite and > 0 (rad/s)", w)
+        s = 1j * w
+        if plant is None:
+            P = self.perturbed_plant(s, alpha, beta, delta)
+        elif isinstance(plant, Device):
+            P = handle_admittance(plant, s)
+        else:
+            P = np.asarray(plant, dtype=complex)
+        Pn, Q = self.nominal(s), self.q(s)
+        den = Pn * (1 - Q) + P * Q
+        eff = P * Pn / den
+        return ObserverResponse(w, P, Pn, eff, Q, (1 - Q) * eff, P)
+
+
+class TwoAxisObserver:
+    """Two coupled Cartesian axes ``(M_x s + B_x) v = F`` with one observer per axis.
+
+    ``nominal_mass``/``nominal_damping`` default to the diagonals of ``M_x``/``B_x`` (each axis
+    identified with the other locked, as in the paper).
+    """
+
+    def __init__(self, inertia, damping, order: int = 2, cutoff: float = 200.0, nominal_mass=None,
+                 nominal_damping=None):
+        M = np.asarray(inertia, dtype=float)
+        B = np.asarray(damping, dtype=float)
+        for name, X in (("inertia", M), ("damping", B)):
+            if X.shape != (2, 2) or not np.all(np.isfinite(X)) or not np.allclose(X, X.T, rtol=1e-12, atol=0):
+                raise ValidationError(name, "a finite symmetric 2x2 matrix", X.tolist())
+        if np.min(np.linalg.eigvalsh(M)) <= 0:
+            raise ValidationError("inertia", "positive definite", M.tolist())
+        if np.min(np.linalg.eigvalsh(B)) < -1e-12 * max(1.0, np.abs(B).max()):
+            raise ValidationError("damping", "positive semidefinite", B.tolist())
+        self.M, self.B = M, B
+        self.order = _integer("order", order, 1, 8)
+        self.cutoff = _real("cutoff", cutoff, lo=0.0, lo_open=True, allowed="> 0 and finite (rad/s)")
+        self.Mn = np.diag(M).copy() if nominal_mass is None else np.asarray(nominal_mass, float).reshape(2)
+        self.Bn = np.diag(B).copy() if nominal_damping is None else np.asarray(nominal_damping, float).reshape(2)
+
+    @classmethod
+    def from_settings(cls, st: ObserverSettings) -> TwoAxisObserver:
+        M, B, _, _ = five_bar_preset(st.preset)
+        return cls(M, B, st.order, st.cutoff)
+
+    # -- realizations ------------------------------------------------------------------------
+    def state_space(self, observer: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(A, Bu, C)``: input the commanded forces (2), outputs ``[x, y, v_x, v_y]``.
+
+        States: positions (2), velocities (2) and, with the observers, per axis a chain of ``r``
+        lags on ``v`` (``xi``) and one on ``u_p`` (``zeta``):
+        ``Q Z_n v = M_n w_Q (xi_{r-1} - xi_r) + B_n xi_r`` (``xi_0 = v``), ``Q u_p = zeta_r``,
+        ``d_hat = Q Z_n v - Q u_p`` and ``u_p = u - d_hat``.
+        """
+        r, wq = self.order, self.cutoff
+        Minv = np.linalg.inv(self.M)
+        nx = 4 + (4 * r if observer else 0)
+        A = np.zeros((nx, nx))
+        Bu = np.zeros((nx, 2))
+        C = np.zeros((4, nx))
+        C[:, :4] = np.eye(4)
+        A[0:2, 2:4] = np.eye(2)
+        A[2:4, 2:4] = -Minv @ self.B
+        if not observer:
+            Bu[2:4] = Minv
+            return A, Bu, C
+        xi = lambda i, j: 4 + i * r + (j - 1)  # noqa: E731  xi_{i,j}, j = 1..r
+        ze = lambda i, j: 4 + 2 * r + i * r + (j - 1)  # noqa: E731
+        # u_p = u - d_hat as a row over the states (Up) plus u
+        Up = np.zeros((2, nx))
+        for i in range(2):
+            prev = 2 + i if r == 1 else xi(i, r - 1)  # xi_{r-1} (xi_0 = v_i)
+            Up[i, prev] -= self.Mn[i] * wq
+            Up[i, xi(i, r)] -= -self.Mn[i] * wq + self.Bn[i]
+            Up[i, ze(i, r)] += 1.0
+        A[2:4] += Minv @ Up
+        Bu[2:4] = Minv
+        for i in range(2):
+            for j in range(1, r + 1):
+                src = 2 + i if j == 1 else xi(i, j - 1)
+                A[xi(i, j), src] += wq
+                A[xi(i, j), xi(i, j)] -= wq
+                if j == 1:
+                    A[ze(i, 1)] += wq * Up[i]
+                    Bu[ze(i, 1), i] += wq
+                else:
+                    A[ze(i, j), ze(i, j - 1)] += wq
+                A[ze(i, j), ze(i, j)] -= wq
+        return A, Bu, C
+
+    # -- views --------------------------------------------------------------------------------
+    def coupling(self, w) -> CouplingResponse:
+        """``v_y/F_x`` and ``v_x/F_x`` with and without the observers at ``w`` (rad/s)."""
+        w = np.asarray(w, dtype=float)
+        if w.size and (not np.all(np.isfinite(w)) or np.any(w <= 0)):
+            raise ValidationError("frequency", "finite and > 0 (rad/s)", w)
+        s = 1j * w
+        out = {}
+        for obs in (False, True):
+            A, Bu, C = self.state_space(obs)
+            n = A.shape[0]
+            X = np.linalg.solve(s[:, None, None] * np.eye(n)[None] - A[None], np.broadcast_to(Bu[:, :1], (w.size, n, 1)))
+            G = (C[None] @ X)[:, :, 0]  # N x 4
+            out[obs] = (G[:, 3], G[:, 2])
+        Z = self.M[None] * s[:, None, None] + self.B[None]
+        q = (self.cutoff / (s + self.cutoff)) ** self.order
+        detZ = Z[:, 0, 0] * Z[:, 1, 1] - Z[:, 0, 1] * Z[:, 1, 0]
+        ratio_cf = (1 - q) * detZ / (Z[:, 0, 0] * Z[:, 1, 1] - (1 - q) ** 2 * Z[:, 0, 1] * Z[:, 1, 0])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = out[True][0] / out[False][0]
+        return CouplingResponse(w, out[False][0], out[True][0], out[False][1], out[True][1], ratio, ratio_cf)
+
+    def step_response(self, force: float = 1.0, duration: float = 0.2, points: int = 2001) -> TwoAxisStep:
+        """Commanded force step on x: exact discretization ``x_{k+1} = e^{A h} x_k + Gamma F``."""
+        force = _real("force", force, allowed="finite (N)")
+        duration = _real("duration", duration, lo=0.0, lo_open=True, hi=100.0, allowed="in (0, 100] s")
+        points = _integer("points", points, 2, 10**6)
+        t = np.linspace(0.0, duration, points)
+        h = t[1] - t[0]
+        res = {}
+        for obs in (False, True):
+            A, Bu, C = self.state_space(obs)
+            n = A.shape[0]
+            Mx = np.zeros((n + 1, n + 1))
+            Mx[:n, :n] = A * h
+            Mx[:n, n] = Bu[:, 0] * force * h
+            E = linalg.expm(Mx)
+            Phi, gam = E[:n, :n], E[:n, n]
+            X = np.zeros((points, n))
+            for k in range(points - 1):
+                X[k + 1] = Phi @ X[k] + gam
+            Y = X @ C.T
+            res[obs] = Y
+        a, b = res[False], res[True]
+        return TwoAxisStep(t, force, a[:, 0], a[:, 1], a[:, 3], b[:, 0], b[:, 1], b[:, 3])

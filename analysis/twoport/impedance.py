@@ -1,0 +1,268 @@
+"""Impedance display: Adams, Moreyra & Hannaford, eq. (2), (4), (7)-(12).
+
+The discrete device admittance (eq. 2) is the continuous chain admittance at the Tustin
+image ``s = j (2/T) tan(theta)``, ``theta = w T / 2``, with the actuator column multiplied
+by the hold factor ``h = cos(theta) e^{-j theta}``.  The coupling is
+``Z_c = b_c + k_c T z/(z-1)`` (eq. 4), and unconditional stability of the interface (eq. 7)
+requires ``Re(1/Z_c) >= bound`` with the bound of eq. (9)::
+
+    bound = (|Y12 Y21| + Re(Y12 Y21)) / (2 Re Y11) - Re Y22.
+
+Cancellation-free form
+----------------------
+With ``y = y12 = y21`` (reciprocal chain) and ``a = Re(y e^{-j theta/2})``,
+``|p| + Re p = 2 cos(theta) a^2``, and the bound is ``-cos(theta) det H / Re y11`` where
+``H`` is the Hermitian part of ``diag(1, e^{-j theta/2}) y diag(1, e^{-j theta/2})``.
+Expanding with ``c2 = cos(theta/2)``, ``s2 = sin(theta/2)``::
+
+    det H = c2^2 Re X + 2 s2 c2 Im X - s2^2 (Re y11 Re y22 + (Im y)^2)
+          = s2^2 |y|^2 - cos(theta) Re X - sin(theta) Im X,
+    X = Re y11 y22 - Re y * y       (so Re X = Re y11 Re y22 - (Re y)^2),
+
+with ``X`` computed from minors of the chain responses (see chain.py).  At low frequency
+``X -> 0`` (the chain moves as a rigid body) and the bound tends to
+``cos(theta) sin^2(theta/2) |y|^2 / Re y11``: tiny, but every digit is kept.  Only the
+responses to a force on the handle are needed (plus ``y22`` for Y itself).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from analysis.chain import grids
+from analysis.chain.response import chain_response, frozen_impedances, handle_impedance, terminated_handle_impedance
+from analysis.chain.discretize import check_frequencies, spring_damper, theta_of
+from analysis.twoport.display_base import APPARENT_FREQUENCY, DisplayBase, FrequencyGrid, safe_ratio
+from analysis.twoport.results import BoundResult, StabilityResult, StiffnessChart, StiffnessDesign, TwoPort
+
+__all__ = ["ImpedanceDisplay", "coupling_impedance", "kc_upper"]
+
+_SAFETY = 1e-9  # relative back-off that keeps reported designs on the safe side
+
+
+def coupling_impedance(w, sample_time: float, kc: float, bc: float) -> np.ndarray:
+    """``Z_c = b_c + k_c T z/(z-1)`` on the unit circle (eq. 4)."""
+    return spring_damper(np.asarray(w, float), sample_time, kc, bc)
+
+
+def re_inv_coupling(w, sample_time: float, kc: float, bc: float) -> np.ndarray:
+    """``Re(1/Z_c) = (b_c + k_c T/2) / |Z_c|^2`` (eq. 9, left side), cancellation-free."""
+    th = 0.5 * np.asarray(w, float) * sample_time
+    return _re_inv_coupling(np.tan(th), sample_time, kc, bc)
+
+
+def _re_inv_coupling(tan_th: np.ndarray, sample_time: float, kc: float, bc: float) -> np.ndarray:
+    """:func:`re_inv_coupling` from ``tan(theta)``."""
+    beta = bc + 0.5 * kc * sample_time
+    gam = 0.5 * kc * sample_time / tan_th
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = beta / (beta * beta + gam * gam)
+    if beta == 0:
+        out = np.where(gam == 0, np.inf, out)
+    return out
+
+
+def kc_upper(bound: np.ndarray, w: np.ndarray, sample_time: float, bc: float) -> np.ndarray:
+    """Largest k_c with ``Re(1/Z_c) >= bound`` at each frequency (closed form).
+
+    ``B[(b_c + k T/2)^2 + (k T cot(theta)/2)^2] <= b_c + k T/2`` is quadratic in ``k``:
+    ``a2 k^2 + a1 k + a0 <= 0`` with ``a2 = B T^2 / (4 sin^2 theta)``,
+    ``a1 = T (B b_c - 1/2)``, ``a0 = b_c (B b_c - 1)``.  Returns ``+inf`` where the bound
+    is not positive and ``-inf`` where no ``k >= 0`` works (``B b_c > 1``).
+    """
+    T = sample_time
+    B = np.asarray(bound, float)
+    th = 0.5 * np.asarray(w, float) * T
+    sn = np.sin(th)
+    with np.errstate(invalid="ignore", over="ignore"):
+        a2 = B * T * T / (4.0 * sn * sn)
+        a1 = T * (B * bc - 0.5)
+        a0 = bc * (B * bc - 1.0)
+    out = np.full(B.shape, np.inf)
+    out[(B == np.inf) | np.isnan(B)] = -np.inf  # singular (lossless) points: nothing is safe
+    pos = (B > 0) & np.isfinite(B)
+    if np.any(pos):
+        a2p, a1p, a0p = a2[pos], a1[pos], a0[pos]
+        disc = np.sqrt(np.maximum(a1p * a1p - 4.0 * a2p * a0p, 0.0))
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            r_neg = (-a1p + disc) / (2.0 * a2p)
+            r_pos = -2.0 * a0p / (a1p + disc)
+        root = np.where(a1p <= 0, r_neg, r_pos)
+        out[pos] = np.where(a0p > 0, -np.inf, root)
+    return out
+
+
+def _handle_impedance_scalar(device, W: float) -> complex | None:
+    """:func:`analysis.chain.handle_impedance` at the single frequency ``s = j W``, in Python
+    complex arithmetic (same operations; no per-mass array overhead).  ``None`` on an exact
+    pole (division by zero)."""
+    m, g = device.masses.tolist(), device.ground_dampings.tolist()
+    b, k = device.dampings.tolist(), device.stiffnesses.tolist()
+    inv_w = 1.0 / W
+    R = complex(g[-1], m[-1] * W)
+    try:
+        for i in range(len(m) - 2, -1, -1):
+            e = complex(b[i], -k[i] * inv_w)
+            R = complex(g[i], m[i] * W) + e * R / (e + R)
+    except (ZeroDivisionError, OverflowError):
+        return None
+    return R
+
+
+class ImpedanceDisplay(DisplayBase):
+    """Impedance display of a device chain with a spring-damper virtual coupling."""
+
+    display = "impedance"
+
+    def __init__(self, device):
+        super().__init__(device)
+        self._apparent: tuple[complex, float] | None = None
+
+    def modes(self) -> np.ndarray:
+        return grids.device_modes(self.device)
+
+    # -- eq. (2), (9) -------------------------------------------------------------------
+    def _compute(self, w: np.ndarray) -> tuple[BoundResult, TwoPort]:
+        """Y(z) of eq. (2) and the bound of eq. (9) from one chain sweep."""
+        fg = self._freq_grid(w)
+        c, sn = fg.cos, fg.sin
+        r = chain_response(self.device, fg.s, want_left=False, impedances=self._impedances(fg))
+        y = r.y12
+        abs_y2 = y.real * y.real + y.imag * y.imag
+        # det H = c2^2 Re X + 2 s2 c2 Im X - s2^2 (Re y11 Re y22 + (Im y)^2), and
+        # Re y11 Re y22 = Re X + (Re y)^2, so det H = s2^2 |y|^2 - cos(th) Re X - sin(th) Im X;
+        # s2^2 = sin^2(th/2) = sin^2(th) / (2 (1 + cos th))  (no subtraction: 0 < th < pi/2)
+        s2sq = sn * sn / (2.0 + 2.0 * c)
+        num = s2sq * abs_y2
+        num -= c * r.x.real
+        num -= sn * r.x.imag
+        num *= c
+        bound, singular = safe_ratio(num, r.re_y11)
+        h = np.empty(w.shape, dtype=complex)  # hold factor cos(th) e^{-j th}
+        np.multiply(c, c, out=h.real)
+        np.multiply(c, -sn, out=h.imag)
+        abs_p = abs_y2 * c
+        re_p = (y * y * h).real
+        br = BoundResult(w=w, bound=bound, p11=r.y11, re_p11=r.re_y11, abs_p=abs_p, re_p=re_p, singular=singular)
+        return br, TwoPort(w=w, p11=r.y11, p12=r.y12 * h, p21=r.y12, p22=r.y22 * h)
+
+    # -- coupling (eq. 4, 9) -------------------------------------------------------------
+    def coupling(self, w, kc: float, bc: float) -> np.ndarray:
+        return coupling_impedance(w, self.device.sample_time, kc, bc)
+
+    def coupling_term(self, w, kc: float, bc: float) -> np.ndarray:
+        """``Re(1/Z_c)``, the left side of eq. (9)."""
+        return re_inv_coupling(w, self.device.sample_time, kc, bc)
+
+    # -- eq. (11), (12) -----------------------------------------------------------------
+    def impedance_range(self, w, kc: float, bc: float) -> tuple[np.ndarray, np.ndarray]:
+        """``(Z_min, Z_max)`` of eq. (11) and (12), complex arrays (N s/m).
+
+        ``Z_max`` is the handle impedance of the chain with ``h Z_c`` from the actuator to
+        ground, which is eq. (12) rewritten without its subtraction.
+        """
+        w = check_frequencies(w, self.device.sample_time)
+        return 1.0 / self.two_port(w).p11, self._zmax(w, kc, bc)
+
+    def _impedances(self, fg: FrequencyGrid) -> tuple[np.ndarray, np.ndarray]:
+        """The chain's (node, element) impedances at the Tustin image of ``fg`` (kept on it)."""
+        if fg.imp is None:
+            fg.imp = frozen_impedances(self.device, fg.W)
+        return fg.imp
+
+    def _zmax(self, w: np.ndarray, kc: float, bc: float) -> np.ndarray:
+        fg = self._freq_grid(w)
+        # held spring-damper h Z_c = b c^2 - j c (b s + k T / (2 s)) (discretize.held_spring_damper)
+        c, sn = fg.cos, fg.sin
+        term = np.empty(w.shape, dtype=complex)
+        np.multiply(bc * c, c, out=term.real)
+        np.multiply(-c, bc * sn + 0.5 * kc * self.device.sample_time / sn, out=term.imag)
+        return terminated_handle_impedance(self.device, self._impedances(fg), term)
+
+    def apparent_impedance(self) -> complex:
+        """Z_min at :data:`APPARENT_FREQUENCY`: the free-motion impedance (device only, cached)."""
+        if self._apparent is None:
+            T = self.device.sample_time
+            W = float((2.0 / T) * np.tan(theta_of(np.array([APPARENT_FREQUENCY]), T))[0])
+            za = _handle_impedance_scalar(self.device, W)
+            if za is None:  # exact pole of a lossless chain: numpy's inf/nan semantics
+                za = complex(handle_impedance(self.device, np.array([1j * W]))[0])
+            self._apparent = (za, W)
+        return self._apparent[0]
+
+    def k_max(self, kc: float) -> float:
+        """Low-frequency stiffness of Z_max: coupling spring in series with the chain springs."""
+        if kc <= 0:
+            return 0.0
+        return 1.0 / (1.0 / kc + self.device.static_compliance)
+
+    def b_min(self) -> float:
+        """Low-frequency damping of Z_min: the device's damping to ground (eq. 11)."""
+        return self.device.total_ground_damping
+
+    def evaluate(self, kc: float, bc: float, w=None, refine: bool = True) -> StabilityResult:
+        """Bound, Re(1/Z_c), margin, eta, Z_min, Z_max and headline numbers."""
+        if w is None:
+            w = self.frequencies()
+            br = self.bound_result(w)
+        else:
+            w = check_frequencies(w, self.device.sample_time)
+            br = self._cached(w, checked=True)[0]
+        term = _re_inv_coupling(self._freq_grid(w).tan, self.device.sample_time, kc, bc)
+        margin = term - br.bound
+        with np.errstate(divide="ignore", invalid="ignore"):  # exact poles of a lossless chain
+            zmin = 1.0 / br.p11
+        zmax = self._zmax(w, kc, bc)
+        za = self.apparent_impedance()
+        return self._result(w, kc, bc, br, term, margin, zmin, zmax, self.k_max(kc), self.b_min(),
+                            za.imag / self._apparent[1], za.real, refine)
+
+    # -- design ------------------------------------------------------------------------
+    def max_stiffness(self, bc: float, w=None) -> StiffnessDesign:
+        """Largest k_c satisfying eq. (9) over the band, for damping ``b_c``.
+
+        The bound is sampled on the resonance-aware grid, the per-frequency closed-form
+        limit :func:`kc_upper` is minimized, and every local minimum is refined; the
+        result is backed off by 1e-9 relative so that it is conservative.
+        """
+        if not (math.isfinite(bc) and bc >= 0):
+            from analysis.errors import ValidationError
+
+            raise ValidationError("bc", ">= 0 and finite (N s/m)", bc)
+        w = self.frequencies() if w is None else check_frequencies(w, self.device.sample_time)
+        T = self.device.sample_time
+        before = self.bound_evaluations
+        B = self.bound(w)
+        vals = kc_upper(B, w, T, bc)
+        lo, hi = grids.band_edges(self.device)
+
+        def f(x: np.ndarray) -> np.ndarray:
+            return kc_upper(self._uncached_bound(x), x, T, bc)
+
+        rw, rv = grids.refine_minima(f, w, vals, lo, hi, candidates=8)
+        j = int(np.argmin(vals))
+        kmin, wmin = float(vals[j]), float(w[j])
+        if rv.size and rv[0] < kmin:
+            kmin, wmin = float(rv[0]), float(rw[0])
+        evals = self.bound_evaluations - before
+        if kmin == -math.inf:
+            return StiffnessDesign(bc=bc, kc=None, frequency=wmin, margin=-math.inf, evaluations=evals)
+        if kmin == math.inf:
+            return StiffnessDesign(bc=bc, kc=math.inf, frequency=math.nan, margin=math.inf, evaluations=evals)
+        kc = kmin * (1.0 - _SAFETY)
+        pts = np.concatenate([w, rw])
+        m = self.coupling_term(pts, kc, bc) - np.concatenate([B, self._compute_checked(rw)[0].bound])
+        return StiffnessDesign(bc=bc, kc=kc, frequency=wmin, margin=float(np.min(m)), evaluations=evals)
+
+    def stiffness_chart(self, bc_values, w=None) -> StiffnessChart:
+        """Largest k_c as a function of b_c (the design chart)."""
+        bcs = np.asarray(bc_values, float)
+        kcs = np.empty(bcs.size)
+        fr = np.empty(bcs.size)
+        for i, bc in enumerate(bcs):
+            d = self.max_stiffness(float(bc), w)
+            kcs[i] = np.nan if d.kc is None else d.kc
+            fr[i] = d.frequency
+        return StiffnessChart(bc=bcs, kc=kcs, frequency=fr)

@@ -1,0 +1,131 @@
+"""Export plots: PNG at a chosen pixel width, SVG, and CSV of the plotted data.
+
+PNG and SVG render the plot's scene with QPainter, so the output size is what was asked for,
+independent of the screen's device pixel ratio (HiDPI-correct).  The CSV has one x and one y
+column per curve (named with units), padded with empty cells where curves differ in length.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+
+from PySide6.QtCore import QByteArray, QBuffer, QIODevice, QRectF, QSaveFile, QSize
+from PySide6.QtGui import QColor, QImage, QPainter
+
+from app.views.base import PlotView
+
+__all__ = ["export_png", "export_svg", "svg_bytes", "export_csv", "csv_text", "ExportError", "FORMATS"]
+
+FORMATS = {"png": "PNG image (*.png)", "svg": "SVG drawing (*.svg)", "csv": "CSV data (*.csv)"}
+
+
+class ExportError(OSError):
+    pass
+
+
+def _write_atomic(path: str | os.PathLike, data: bytes) -> None:
+    f = QSaveFile(os.fspath(path))
+    if not f.open(QIODevice.OpenModeFlag.WriteOnly):
+        raise ExportError(f"cannot write {path}: {f.errorString()}")
+    if f.write(data) != len(data):
+        err = f.errorString()
+        f.cancelWriting()
+        raise ExportError(f"cannot write {path}: {err}")
+    if not f.commit():
+        raise ExportError(f"cannot write {path}: {f.errorString()}")
+
+
+def _source(view: PlotView) -> QRectF:
+    return QRectF(view.plot_widget.viewport().rect())
+
+
+def export_png(view: PlotView, path: str | os.PathLike, width: int, height: int | None = None) -> QSize:
+    """Write the plot as a PNG ``width`` pixels wide (height keeps the aspect ratio unless given)."""
+    src = _source(view)
+    if width < 16 or width > 20000:
+        raise ExportError("PNG width must be between 16 and 20000 pixels")
+    if height is None:
+        height = max(1, round(width * src.height() / max(src.width(), 1.0)))
+    image = QImage(width, height, QImage.Format.Format_ARGB32)
+    image.setDevicePixelRatio(1.0)
+    image.fill(QColor(view.palette_colors()["bg"]))
+    painter = QPainter(image)
+    try:
+        view.render_into(painter, QRectF(0, 0, width, height))
+    finally:
+        painter.end()
+    buf = QByteArray()
+    dev = QBuffer(buf)
+    dev.open(QIODevice.OpenModeFlag.WriteOnly)
+    if not image.save(dev, "PNG"):
+        raise ExportError("PNG encoding failed")
+    dev.close()
+    _write_atomic(path, bytes(buf.data()))
+    return QSize(width, height)
+
+
+def export_svg(view: PlotView, path: str | os.PathLike) -> None:
+    """Write the plot as an SVG drawing (vector)."""
+    try:
+        import PySide6.QtSvg  # noqa: F401
+    except ImportError:  # pragma: no cover - PySide6 without QtSvg: pyqtgraph's own exporter
+        from pyqtgraph.exporters import SVGExporter
+
+        text = SVGExporter(view.plot.scene()).export(toBytes=True)
+        _write_atomic(path, bytes(text))
+        return
+    _write_atomic(path, svg_bytes(view, view.title, view.palette_colors()["bg"], "zwidth plot"))
+
+
+def svg_bytes(view: PlotView, title: str, background: str, description: str = "") -> bytes:
+    """The plot as an SVG document (QSvgGenerator; vector axes, curves and text)."""
+    from PySide6.QtSvg import QSvgGenerator
+
+    src = _source(view)
+    buf = QByteArray()
+    dev = QBuffer(buf)
+    dev.open(QIODevice.OpenModeFlag.WriteOnly)
+    gen = QSvgGenerator()
+    gen.setOutputDevice(dev)
+    gen.setSize(src.size().toSize())
+    gen.setViewBox(QRectF(0, 0, src.width(), src.height()))
+    gen.setTitle(title)
+    if description:
+        gen.setDescription(description)
+    painter = QPainter(gen)
+    try:
+        painter.fillRect(QRectF(0, 0, src.width(), src.height()), QColor(background))
+        view.render_into(painter, QRectF(0, 0, src.width(), src.height()))
+    finally:
+        painter.end()
+    dev.close()
+    return bytes(buf.data())
+
+
+def csv_text(view: PlotView) -> str:
+    """The plotted data as CSV text: a header row with units, then x/y columns per curve."""
+    series = view.export_series()
+    out = io.StringIO()
+    w = csv.writer(out, lineterminator="\n")
+    header: list[str] = []
+    for s in series:
+        header += [f"{s.name}: {s.x_label}", f"{s.name}: {s.y_label}"]
+    w.writerow(header)
+    rows = max((len(s.x) for s in series), default=0)
+    for i in range(rows):
+        row: list[str] = []
+        for s in series:
+            if i < len(s.x):
+                row += [repr(float(s.x[i])), repr(float(s.y[i]))]
+            else:
+                row += ["", ""]
+        w.writerow(row)
+    return out.getvalue()
+
+
+def export_csv(view: PlotView, path: str | os.PathLike) -> None:
+    _write_atomic(path, csv_text(view).encode("utf-8"))
+
+
