@@ -2,9 +2,12 @@
 
 Every error names the offending field (and element index where relevant) and the
 allowed range, so that the GUI and the command line can show it next to the input.
+The validators that raise it are in :mod:`analysis.checks`.
 """
 
 from __future__ import annotations
+
+__all__ = ["ValidationError"]
 
 
 class ValidationError(ValueError):
@@ -20,12 +23,23 @@ class ValidationError(ValueError):
         Human-readable description of the allowed range, e.g. ``"> 0 and finite"``.
     value:
         The rejected value.
+    within:
+        Names of the enclosing records, outermost first (e.g. ``("grasp",)`` for the grasp's
+        ``mass`` inside a scenario); empty for a top-level field.  Used to build JSON paths.
     """
 
-    def __init__(self, field: str, allowed: str, value: object = None, index: int | None = None):
+    def __init__(self, field: str, allowed: str, value: object = None, index: int | None = None,
+                 within: tuple[str, ...] = ()):
         self.field = field
         self.index = index
         self.allowed = allowed
         self.value = value
+        self.within = tuple(within)
         where = f"{field}[{index}]" if index is not None else field
         super().__init__(f"{where} = {value!r} is invalid: allowed range is {allowed}")
+
+    def inside(self, record: str) -> ValidationError:
+        """The same error, raised from inside the record field ``record`` (prepended to ``within``)."""
+        err = ValidationError(self.field, self.allowed, self.value, self.index, (record, *self.within))
+        err.__cause__ = self.__cause__
+        return err

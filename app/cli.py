@@ -18,9 +18,7 @@ Exit codes: 0 success, 1 bad profile (or the GUI cannot start), 2 usage error.
 from __future__ import annotations
 
 import argparse
-import importlib
 import json
-import math
 import os
 import sys
 from collections.abc import Mapping, Sequence
@@ -40,6 +38,8 @@ PLOT_SECTIONS = {"transparency": "wall", "robustness": "wall", "step": "wall", "
 
 
 def _parser() -> argparse.ArgumentParser:
+    from analysis.study.displays import DISPLAY_KINDS
+
     parser = argparse.ArgumentParser(
         prog="zwidth",
         description="Design tool for stable haptic interfaces (two-port virtual coupling design, Z-width).",
@@ -51,7 +51,7 @@ def _parser() -> argparse.ArgumentParser:
     analyze.add_argument("--json", action="store_true", help="print the summary as JSON")
     design = sub.add_parser("design", help="print the conservative designs and the design chart")
     design.add_argument("profile", metavar="PROFILE", help="profile JSON file")
-    design.add_argument("--display", choices=("impedance", "admittance"),
+    design.add_argument("--display", choices=tuple(DISPLAY_KINDS),
                         help="display type (default: the profile's)")
     design.add_argument("--json", action="store_true", help="print the designs as JSON")
     bench = sub.add_parser("bench", help="run the benchmarks and print their table")
@@ -98,29 +98,10 @@ def _error(message: str) -> int:
 
 
 def _jsonable(value: object) -> object:
-    """Plain JSON values; inf/-inf/nan become the strings "inf"/"-inf"/"nan"."""
-    import numpy as np
+    """Plain JSON values; inf/-inf/nan become "inf"/"-inf"/"nan" (:func:`analysis.checks.jsonable`)."""
+    from analysis.checks import jsonable
 
-    if isinstance(value, Mapping):
-        return {str(k): _jsonable(v) for k, v in value.items()}
-    if isinstance(value, np.ndarray):
-        return [_jsonable(v) for v in value.tolist()]
-    if isinstance(value, (list, tuple)):
-        return [_jsonable(v) for v in value]
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    if isinstance(value, (int, np.integer)):
-        return int(value)
-    if isinstance(value, (float, np.floating)):
-        x = float(value)
-        if math.isnan(x):
-            return "nan"
-        if math.isinf(x):
-            return "inf" if x > 0 else "-inf"
-        return x
-    if value is None or isinstance(value, str):
-        return value
-    return str(value)
+    return jsonable(value)
 
 
 def _format_value(value: object) -> str:
@@ -149,48 +130,41 @@ def format_table(summary: Mapping) -> str:
     return "\n".join(f"{key.ljust(width)}  {text}" for key, text in rows)
 
 
-def _analyze(profile_path: str | Path, as_json: bool) -> int:
+def _load(profile_path: str | Path):
+    """``(profile, None)`` or ``(None, exit code)`` after printing why the file is bad."""
     from analysis.profiles.io import ProfileError, load_profile
 
     try:
-        profile = load_profile(profile_path)
+        return load_profile(profile_path), None
     except ProfileError as err:
-        return _error(str(err))
+        return None, _error(str(err))
+
+
+def _analyze(profile_path: str | Path, as_json: bool) -> int:
+    """``zwidth analyze``: :func:`analysis.study.summarize` as JSON or text (no Qt)."""
     from analysis.errors import ValidationError
+    from analysis.study.summary import format_summary, summarize
 
-    try:
-        from analysis.study.summary import summarize
-    except ModuleNotFoundError as exc:
-        if exc.name != "analysis.study.summary":
-            raise
-        return _error("this build has no analysis summary (analysis/summary.py is missing)")
-
+    profile, code = _load(profile_path)
+    if profile is None:
+        return code
     try:
         summary = summarize(profile)
     except ValidationError as err:
         return _error(f"{profile_path}: {err}")
-    if as_json:
-        print(json.dumps(_jsonable(summary), indent=2, allow_nan=False))
-    else:
-        from analysis.study.summary import format_summary
-
-        print(format_summary(summary))
+    print(json.dumps(_jsonable(summary), indent=2, allow_nan=False) if as_json else format_summary(summary))
     return 0
 
 
 def _design(profile_path: str | Path, display: str | None, as_json: bool) -> int:
-    from analysis.profiles.io import ProfileError, load_profile
+    """``zwidth design``: :func:`analysis.study.design_summary` as JSON or text (no Qt)."""
     from analysis.study.summary import design_summary, format_design
 
-    try:
-        profile = load_profile(profile_path)
-    except ProfileError as err:
-        return _error(str(err))
+    profile, code = _load(profile_path)
+    if profile is None:
+        return code
     result = design_summary(profile, display)
-    if as_json:
-        print(json.dumps(_jsonable(result), indent=2, allow_nan=False))
-    else:
-        print(format_design(result))
+    print(json.dumps(_jsonable(result), indent=2, allow_nan=False) if as_json else format_design(result))
     return 0
 
 
@@ -210,15 +184,6 @@ def _headless() -> None:
         os.environ["QT_QPA_PLATFORM"] = "offscreen"
 
 
-def _load_for_qt(profile_path: str | Path):
-    from analysis.profiles.io import ProfileError, load_profile
-
-    try:
-        return load_profile(profile_path), None
-    except ProfileError as err:
-        return None, _error(str(err))
-
-
 def _export_plot(args: argparse.Namespace) -> int:
     fmt = Path(args.output).suffix.lower().lstrip(".")
     if fmt not in ("png", "svg", "csv"):
@@ -229,7 +194,7 @@ def _export_plot(args: argparse.Namespace) -> int:
             return _usage("export-plot", f"--{opt} must be between 16 and 20000 pixels")
     if not 10 <= args.dpi <= 2400:
         return _usage("export-plot", "--dpi must be between 10 and 2400")
-    profile, code = _load_for_qt(args.profile)
+    profile, code = _load(args.profile)
     if profile is None:
         return code
     section = PLOT_SECTIONS.get(args.plot)
@@ -268,7 +233,7 @@ def _report(args: argparse.Namespace) -> int:
 
     if report_format(args.output) is None:
         return _usage("report", f"-o {args.output}: the extension must be .pdf or .html")
-    profile, code = _load_for_qt(args.profile)
+    profile, code = _load(args.profile)
     if profile is None:
         return code
     _headless()
@@ -292,24 +257,14 @@ def _report(args: argparse.Namespace) -> int:
 
 
 def _gui(profile_path: str | Path | None) -> int:
-    from analysis.profiles.io import ProfileError, load_profile
-
     path = Path(profile_path) if profile_path is not None else _default_profile()
+    loaded, code = _load(path)  # a bad file is reported here, with exit code 1, before Qt starts
+    if loaded is None:
+        return code
     try:
-        load_profile(path)  # a bad file is reported here, with exit code 1, before Qt starts
-    except ProfileError as err:
-        return _error(str(err))
-    try:
-        main_window = importlib.import_module("app.window.main_window")
-    except ModuleNotFoundError as exc:
-        if exc.name != "app.window.main_window":
-            return _error(f"cannot start the GUI: {exc}")
-        main_window = None
+        from app.window.main_window import run_gui
     except ImportError as exc:  # usually a missing system library for Qt
         return _error(f"cannot start the GUI: {exc} (see packaging/system-deps.sh)")
-    run_gui = getattr(main_window, "run_gui", None)
-    if run_gui is None:  # no GUI yet: show what it would show
-        return _analyze(path, as_json=False)
     return int(run_gui(str(path)) or 0)
 
 

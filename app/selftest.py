@@ -20,6 +20,11 @@ import sys
 import threading
 import time
 import traceback
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # Qt is imported late on purpose (the self-test times the import)
+    from PySide6.QtGui import QIcon
+    from PySide6.QtWidgets import QApplication, QWidget
 
 __all__ = ["run_selftest", "process_age"]
 
@@ -145,6 +150,33 @@ def run_selftest() -> int:
         timer.cancel()
 
 
+def _check_icon(app: QApplication) -> QIcon:
+    """The application icon (all sizes) from the packaged icon files; set on ``app``."""
+    from app.window.about import app_icon, icon_path
+
+    icon = app_icon()
+    if icon.isNull() or icon.pixmap(256, 256).isNull():
+        raise RuntimeError(f"application icon missing (looked for {icon_path(256)})")
+    app.setWindowIcon(icon)
+    _say(f"icon ok: {len(icon.availableSizes())} sizes from {icon_path(256).parent}")
+    return icon
+
+
+def _check_about(window: QWidget, app: QApplication) -> None:
+    """The About box renders and reads the package versions."""
+    from app.window.about import AboutDialog
+
+    about = AboutDialog(window)
+    about.show()
+    app.processEvents()
+    if about.grab().isNull():
+        raise RuntimeError("the About box did not render")
+    if "not installed" in about.body_label.text():
+        _say("note: some dependency versions could not be read")
+    about.close()
+    _say("about box ok")
+
+
 def _run() -> int:
     _say(f"python {sys.version.split()[0]}, frozen={bool(getattr(sys, 'frozen', False))}, "
          f"platform={os.environ.get('QT_QPA_PLATFORM')}")
@@ -169,14 +201,7 @@ def _run() -> int:
     app.setApplicationName("zwidth")
     app.setDesktopFileName("zwidth")
 
-    from app.window.about import AboutDialog, app_icon, icon_path
-
-    icon = app_icon()
-    if icon.isNull() or icon.pixmap(256, 256).isNull():
-        raise RuntimeError(f"application icon missing (looked for {icon_path(256)})")
-    app.setWindowIcon(icon)
-    _say(f"icon ok: {len(icon.availableSizes())} sizes from {icon_path(256).parent}")
-
+    icon = _check_icon(app)
     _check_pyqtgraph()
 
     window_class = getattr(main_window, "MainWindow", None)
@@ -197,17 +222,7 @@ def _run() -> int:
     image = _render(window, app)
     _say(f"{kind} rendered {image.width()}x{image.height()}")
 
-    about = AboutDialog(window)
-    about.show()
-    app.processEvents()
-    if about.grab().isNull():
-        raise RuntimeError("the About box did not render")
-    versions = about.body_label.text()
-    if "not installed" in versions:
-        _say("note: some dependency versions could not be read")
-    about.close()
-    _say("about box ok")
-
+    _check_about(window, app)
     runner = getattr(window, "runner", None)
     if runner is not None and hasattr(runner, "shutdown"):
         runner.shutdown()

@@ -59,7 +59,7 @@ def dense_max_stiffness(imp, bc: float, points: int = 300_000, candidates: int =
     w = band(imp.device, points)
 
     def f(x):
-        return kc_upper(imp._bound_parts(x).bound, x, T, bc)
+        return kc_upper(imp.bound_parts(x).bound, x, T, bc)
 
     return refined_min(f, w, f(w), candidates)
 
@@ -88,7 +88,7 @@ def u_limits(B, w, T, mc):
 def dense_interval(adm, mc: float, points: int = 400_000):
     """Feasible b_c interval of eq. (21) on a dense log grid (optimistic by construction)."""
     w = band(adm.device, points)
-    B = adm._bound_parts(w).bound
+    B = adm.bound_parts(w).bound
     L, U = u_limits(B, w, adm.device.sample_time, mc)
     u_lo, u_hi = max(float(L.max()), 0.0), float(U.min())
     if not u_hi > u_lo:

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 
+from analysis.study import display_kind
 from app.cli import format_table, main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -133,8 +134,8 @@ def test_analyze_json_shape():
     assert d["summary_version"] == 1
     assert set(d["profile"]) >= {"name", "display", "sample_time", "band", "masses", "stiffnesses", "dampings",
                                  "damping_ratios", "ground_dampings", "sensor_element"}
-    verdict = {"stable", "worst_margin", "worst_frequency", "min_eta", "k_max", "b_min", "apparent_mass",
-               "apparent_damping"}
+    verdict = {"stable", "stability_reserve", "binding_frequency", "worst_margin", "worst_frequency", "min_eta",
+               "k_max", "b_min", "apparent_mass", "apparent_damping"}
     assert set(d["impedance"]) == verdict | {"coupling", "design"}
     assert set(d["impedance"]["design"]) == {"bc", "kc_max", "frequency", "margin"}
     assert set(d["admittance"]) == verdict | {"coupling", "pd", "design"}
@@ -147,7 +148,7 @@ def test_design_json_shape(display):
     assert proc.returncode == 0, proc.stderr
     d = json.loads(proc.stdout)
     assert d["display"] == display and d["summary_version"] == 1
-    if display == "impedance":
+    if display_kind(display).is_impedance:
         assert set(d) == {"summary_version", "display", "design", "chart"}
         assert set(d["chart"]) == {"bc", "kc_max", "frequency"}
     else:

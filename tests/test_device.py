@@ -196,3 +196,52 @@ def test_lossless_admittance_bound_never_nan():
     # where Re G11 = 0 the bound is +-inf, or 0 where the numerator vanishes too (safe_ratio)
     assert np.all(np.isinf(br.bound) | (br.bound == 0))
     assert not np.any(np.isnan(res.margin))
+
+
+# -- the one continued fraction, state space and ZOH of the chain (analysis.chain) -------------------
+def test_handle_impedance_scalar_and_array_forms_agree():
+    from analysis.chain import handle_impedance, handle_impedance_at
+
+    dev = Device(**GOOD)
+    W = np.array([0.3, 17.0, 2500.0])
+    arr = handle_impedance(dev, 1j * W)
+    for i, x in enumerate(W):  # same operations; Python's complex division may round differently
+        assert handle_impedance_at(dev, float(x)) == pytest.approx(complex(arr[i]), rel=4e-16)
+    # a lossless chain at its exact antiresonance: the scalar form reports the pole
+    lossless = Device(masses=[1.0, 1.0], stiffnesses=[1.0], dampings=[0.0])
+    assert handle_impedance_at(lossless, 1.0) is None
+
+
+def test_handle_state_space_is_the_handle_admittance():
+    from analysis.chain import chain_response, chain_state_space, handle_admittance, handle_state_space
+
+    dev = Device(**GOOD)
+    s = 1j * np.geomspace(1.0, 1e4, 25)
+    A, B, C = handle_state_space(dev)
+    assert A.shape == (2 * dev.n - 1, 2 * dev.n - 1)
+    ss = np.array([(C @ np.linalg.solve(x * np.eye(A.shape[0]) - A, B))[0, 0] for x in s])
+    np.testing.assert_allclose(ss, handle_admittance(dev, s), rtol=1e-10)
+    np.testing.assert_allclose(handle_admittance(dev, s), chain_response(dev, s).y11, rtol=1e-12)
+    # the absolute realization has the same modes plus the rigid-body pole at s = 0
+    Ax, Bx = chain_state_space(dev)
+    assert Ax.shape == (1, 2 * dev.n, 2 * dev.n) and Bx.shape == (1, 2 * dev.n, 2)
+    ev_abs = np.sort_complex(np.linalg.eigvals(Ax[0]))
+    ev_min = np.sort_complex(np.concatenate([np.linalg.eigvals(A), [0.0]]))
+    np.testing.assert_allclose(ev_abs, ev_min, atol=1e-9 * np.max(np.abs(ev_abs)))
+
+
+def test_discretize_zoh_closed_form_and_batched_steps():
+    from analysis.chain import discretize_zoh
+
+    m, h = 2.0, 1e-3
+    A = np.array([[0.0, 1.0], [0.0, 0.0]])  # free mass: (x, v)
+    B = np.array([[0.0], [1.0 / m]])
+    Phi, Gam = discretize_zoh(A, B, h)
+    np.testing.assert_allclose(Phi, [[1.0, h], [0.0, 1.0]], rtol=1e-15, atol=1e-18)
+    np.testing.assert_allclose(Gam[:, 0], [h * h / (2 * m), h / m], rtol=1e-14)
+    hs = np.array([h, h / 2, h / 4])
+    Pb, Gb = discretize_zoh(A, B, hs)
+    assert Pb.shape == (3, 2, 2) and Gb.shape == (3, 2, 1)
+    for i, hi in enumerate(hs):
+        P1, G1 = discretize_zoh(A, B, hi)
+        assert np.array_equal(Pb[i], P1) and np.array_equal(Gb[i], G1)

@@ -71,6 +71,9 @@ def test_sections_round_trip_through_a_file(tmp_path):
         ("simulation", {"options": {"substeps": 0}}, "$.simulation.options.substeps"),
         ("simulation", {"scenario": {"duration": -1.0}}, "$.simulation.scenario.duration"),
         ("simulation", {"extra": 1}, "$.simulation.extra"),
+        ("simulation", {"scenario": {"grasp": {"mass": -1.0}}}, "$.simulation.scenario.grasp.mass"),
+        ("simulation", {"scenario": {"grasp": {"reach": 1.0}}}, "$.simulation.scenario.grasp.reach"),
+        ("simulation", {"options": {"friction": [0.0, -1.0]}}, "$.simulation.options.friction[1]"),
     ],
 )
 def test_bad_sections_name_their_json_path(section, value, path):
@@ -80,6 +83,29 @@ def test_bad_sections_name_their_json_path(section, value, path):
     with pytest.raises(ProfileError) as info:
         profile_from_dict(d)
     assert info.value.json_path.startswith(path), (info.value.json_path, str(info.value))
+
+
+def test_nested_grasp_error_names_the_full_json_path():
+    d = _v1_dict()
+    d["schema_version"] = 3
+    d["simulation"] = {"scenario": {"grasp": {"mass": -1.0}}}
+    with pytest.raises(ProfileError) as info:
+        profile_from_dict(d)
+    assert info.value.json_path == "$.simulation.scenario.grasp.mass"
+    assert str(info.value) == "$.simulation.scenario.grasp.mass: expected >= 0 and finite, got -1.0"
+
+
+def test_infinite_settings_are_written_as_strings_and_read_back(tmp_path):
+    base = load_profile(resource_path("profiles", "hbfd.json"))
+    sim = SimulationSection(options=hbfd_options(force_continuous=float("inf"), force_peak=float("inf")),
+                            scenario=scenario("wall_push"))
+    p = base.replace(simulation=sim)
+    d = profile_to_dict(p)
+    assert d["simulation"]["options"]["force_peak"] == "inf"
+    assert d["simulation"]["scenario"]["push_end"] == "inf"
+    path = tmp_path / "p.json"
+    save_profile(p, path)
+    assert load_profile(path).simulation == sim
 
 
 def test_bundled_eom_profile_reproduces_the_paper_example():

@@ -538,3 +538,62 @@ def test_fuzz_numbers_in_hbfd(x, i):
     else:
         with pytest.raises(ProfileError, match=rf"\$\.device\.masses\[{i}\]"):
             profile_from_dict(d)
+
+
+# -- layering ------------------------------------------------------------------------------------
+
+REPO = Path(__file__).resolve().parent.parent
+HEAVY = ("analysis.transparency.design", "analysis.transparency.index", "analysis.sampled.simulator")
+
+
+def test_profile_record_does_not_load_the_design_stack():
+    """Importing the Profile record loads only the light settings records (a fresh interpreter)."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, analysis.profiles.model\n"
+        f"print(sorted(m for m in sys.modules if m.startswith({HEAVY!r})))\n"
+        "import analysis.profiles.io, analysis.profiles\n"
+        f"print(sorted(m for m in sys.modules if m.startswith({HEAVY!r})))\n"
+        "from analysis.transparency import WallDesign\n"
+        "from analysis.sampled import simulate\n"
+        "import analysis.transparency as t, analysis.sampled as s\n"
+        "assert set(t.__all__) <= set(dir(t)) and set(s.__all__) <= set(dir(s))\n"
+        "assert all(getattr(t, n) is not None for n in t.__all__)\n"
+        "assert all(getattr(s, n) is not None for n in s.__all__)\n"
+        "print(WallDesign.__name__, simulate.__name__)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], cwd=REPO, capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.splitlines() == ["[]", "[]", "WallDesign simulate"]
+
+
+def test_profiles_package_has_no_import_cycle():
+    """The imports among analysis/profiles/*.py (module- and function-level) form no cycle."""
+    import ast
+
+    folder = REPO / "analysis" / "profiles"
+    graph: dict[str, set[str]] = {}
+    for path in folder.glob("*.py"):
+        deps = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("analysis.profiles."):
+                deps.add(node.module.rsplit(".", 1)[1])
+            elif isinstance(node, ast.ImportFrom) and node.level == 1 and node.module:
+                deps.add(node.module)
+        graph[path.stem] = deps - {path.stem}
+    graph.pop("__init__")
+    done: set[str] = set()
+
+    def visit(name: str, stack: tuple[str, ...]) -> None:
+        assert name not in stack, f"import cycle: {' -> '.join((*stack, name))}"
+        if name in done:
+            return
+        for dep in graph.get(name, ()):
+            visit(dep, (*stack, name))
+        done.add(name)
+
+    for name in graph:
+        visit(name, ())
+    assert "io" in done and graph["sections"] <= {"errors"}

@@ -140,13 +140,13 @@ def _dense_set(disp, points=20_000):
 def test_max_stiffness_conservative_and_tight(dev, fb):
     imp = ImpedanceDisplay(dev)
     w = _dense_set(imp)
-    B = imp._bound_parts(w).bound
+    B = imp.bound_parts(w).bound
     bc = 10 ** (-2 * fb) * 0.5 / float(np.max(B))
     d = imp.max_stiffness(bc)
     T = dev.sample_time
 
     def f(x):
-        return kc_upper(imp._bound_parts(x).bound, x, T, bc)
+        return kc_upper(imp.bound_parts(x).bound, x, T, bc)
 
     ref_kc, _ = dense.refined_min(f, w, f(w), candidates=6)
     if ref_kc == math.inf:
@@ -167,15 +167,15 @@ def test_feasible_damping_conservative_and_tight(dev, fm):
     adm = AdmittanceDisplay(dev, kp, kd)
     T = dev.sample_time
     w = _dense_set(adm)
-    B = adm._bound_parts(w).bound
+    B = adm.bound_parts(w).bound
     mc = dense.dense_min_mass(adm, w, B, rtol=1e-6) * (1.5 + 20 * fm)
     d = adm.feasible_damping(mc)
 
     def upper(x):
-        return dense.u_limits(adm._bound_parts(x).bound, x, T, mc)[1]
+        return dense.u_limits(adm.bound_parts(x).bound, x, T, mc)[1]
 
     def neg_lower(x):
-        return -dense.u_limits(adm._bound_parts(x).bound, x, T, mc)[0]
+        return -dense.u_limits(adm.bound_parts(x).bound, x, T, mc)[0]
 
     L, U = dense.u_limits(B, w, T, mc)
     u_hi, _ = dense.refined_min(upper, w, U)

@@ -28,13 +28,19 @@ from scipy import signal
 from analysis import AdmittanceDisplay, Device, ImpedanceDisplay
 from analysis.errors import ValidationError
 from analysis.sampled import (
+    ADMITTANCE_LOOP,
+    CONSTRAINT,
     HANDS_OFF,
+    IMPEDANCE_LOOP,
+    PENALTY,
     RIGID_GRASP,
+    Environment,
     Grasp,
     LoopSpec,
     Scenario,
     SimulationOptions,
     Termination,
+    causality_kind,
     closed_loop_matrices,
     critical_mass,
     critical_mass_chart,
@@ -42,6 +48,7 @@ from analysis.sampled import (
     critical_stiffness_chart,
     default_terminations,
     discretize_zoh,
+    display_loop,
     free_motion,
     god_object_wall,
     linear_stability_limit,
@@ -273,6 +280,53 @@ def test_loop_spec_validation():
     with pytest.raises(ValidationError) as e:
         critical_stiffness(make_hbfd(), -5.0)
     assert e.value.field == "bc"
+
+
+# -- displays and causalities are objects --------------------------------------------------------
+def test_display_and_causality_names_map_to_one_object_each():
+    assert display_loop("impedance") is IMPEDANCE_LOOP and display_loop("admittance") is ADMITTANCE_LOOP
+    assert display_loop(ADMITTANCE_LOOP) is ADMITTANCE_LOOP
+    assert LoopSpec("admittance", (8.0, 400.0)).loop is ADMITTANCE_LOOP
+    assert causality_kind("impedance") is PENALTY and causality_kind("admittance") is CONSTRAINT
+    assert Environment("admittance", wall=True).kind is CONSTRAINT and penalty_wall().kind is PENALTY
+    for bad, lookup, field in (("sideways", display_loop, "display"), ("x", causality_kind, "causality")):
+        with pytest.raises(ValidationError) as e:
+            lookup(bad)
+        assert e.value.field == field and "impedance or admittance" in str(e.value)
+
+
+def test_loop_objects_name_memory_gains_and_terminations():
+    assert IMPEDANCE_LOOP.memory_names(PENALTY, False) == ("delta", "xe")
+    assert IMPEDANCE_LOOP.memory_names(CONSTRAINT, True) == ("delta", "xe", "ve", "fe")
+    assert ADMITTANCE_LOOP.memory_names(PENALTY, True) == ("yp", "xc", "w", "fe")
+    assert ADMITTANCE_LOOP.memory_names(CONSTRAINT, False) == ("yp", "xc", "ve", "w")
+    assert IMPEDANCE_LOOP.default_coupling == (50e3, 100.0) and ADMITTANCE_LOOP.default_coupling == (8.0, 400.0)
+    assert IMPEDANCE_LOOP.default_termination() == Termination(HANDS_OFF, penalty_wall())
+    assert ADMITTANCE_LOOP.default_termination() == Termination(RIGID_GRASP, free_motion("impedance"))
+    # the penalty wall pushes only while penetrated; the god-object wall holds the object on it
+    assert not PENALTY.contact(1e-3, 1e-3) and PENALTY.contact(2e-3, 1e-3)
+    assert CONSTRAINT.contact(1e-3, 1e-3) and not CONSTRAINT.contact(0.0, 1e-3)
+    assert not PENALTY.constrains(True) and CONSTRAINT.constrains(True) and not CONSTRAINT.constrains(False)
+    with pytest.raises(ValidationError) as e:
+        Environment("impedance", wall=True)
+    assert e.value.field == "wall"
+    with pytest.raises(ValidationError) as e:
+        Environment("admittance", mass=0)
+    assert e.value.field == "mass" and e.value.value == 0
+
+
+def test_stability_map_default_termination_is_the_loops():
+    dev = make_hbfd()
+    x, y = ("mc", [4.0, 8.0, 31.0]), ("bc", [400.0, 1550.0])
+    a = stability_map(dev, x, y, display="admittance", coupling=(8.0, 400.0))
+    b = stability_map(dev, x, y, display="admittance", coupling=(8.0, 400.0),
+                      termination=ADMITTANCE_LOOP.default_termination())
+    assert a.spectral_radius.shape == (2, 3)
+    np.testing.assert_array_equal(a.spectral_radius, b.spectral_radius)
+    # against a rigid grasp, b_c = 400 N s/m is unstable for every m_c and b_c = 1550 N s/m is
+    # stable above critical_mass (1.63 kg), the same termination's exact limit
+    assert np.all(a.spectral_radius[0] > 1.0)
+    assert critical_mass(dev, 1550.0) < 4.0 and np.all(a.spectral_radius[1] <= 1.0)
 
 
 # -- options and scenarios for the profile -------------------------------------------------------

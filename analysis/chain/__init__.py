@@ -1,7 +1,7 @@
 """The device chain: the lumped-mass model, its one continued fraction and state space,
-the discretizations (Tustin image, holds) and the frequency grids.
+the discretizations (Tustin image, holds, exact ZOH) and the frequency grids.
 
-Adams, Moreyra & Hannaford, *Stability and Performance of Haptic Displays* (section V, eqs. 26-28).
+Adams, Moreyra & Hannaford, *Stability and Performance of Haptic Displays* (section V, eqs. 25-28).
 """
 
 from __future__ import annotations
@@ -11,13 +11,26 @@ from .device import (  # noqa: F401
     damping_from_ratio,
     ratio_from_damping,
 )
+from .continued_fraction import (  # noqa: F401
+    continued_fraction,
+    node_element_impedances,
+    chain_impedances,
+    frozen_impedances,
+    handle_impedance,
+    terminated_handle_impedance,
+    handle_impedance_at,
+    handle_admittance,
+)
 from .response import (  # noqa: F401
     ChainResponse,
     chain_response,
-    chain_impedances,
-    handle_impedance,
+)
+from .state_space import (  # noqa: F401
+    chain_state_space,
+    handle_state_space,
 )
 from .discretize import (  # noqa: F401
+    discretize_zoh,
     theta_of,
     tustin_image,
     hold_factor,
@@ -39,10 +52,19 @@ __all__ = [
     "Device",
     "damping_from_ratio",
     "ratio_from_damping",
+    "continued_fraction",
+    "node_element_impedances",
+    "chain_impedances",
+    "frozen_impedances",
+    "handle_impedance",
+    "terminated_handle_impedance",
+    "handle_impedance_at",
+    "handle_admittance",
     "ChainResponse",
     "chain_response",
-    "chain_impedances",
-    "handle_impedance",
+    "chain_state_space",
+    "handle_state_space",
+    "discretize_zoh",
     "theta_of",
     "tustin_image",
     "hold_factor",

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import linalg
 
+from analysis.checks import Real, check_elements, integer, positive, real, vector
 from analysis.errors import ValidationError
 
 __all__ = ["Device", "damping_from_ratio", "ratio_from_damping"]
@@ -39,22 +40,9 @@ def ratio_from_damping(stiffness: float, mass_a: float, mass_b: float, damping: 
     return damping / (2.0 * math.sqrt(stiffness * mu))
 
 
-def _vector(name: str, values, length: int | None) -> np.ndarray:
-    try:
-        arr = np.array(values, dtype=float, copy=True).reshape(-1)
-    except (TypeError, ValueError) as exc:
-        raise ValidationError(name, "a list of real numbers", values) from exc
-    if length is not None and arr.size != length:
-        raise ValidationError(name, f"exactly {length} values", list(np.atleast_1d(values)))
-    arr.setflags(write=False)
-    return arr
-
-
-def _check(name: str, arr: np.ndarray, positive: bool) -> None:
-    allowed = "> 0 and finite" if positive else ">= 0 and finite"
-    for i, x in enumerate(arr):
-        if not math.isfinite(x) or (x <= 0 if positive else x < 0):
-            raise ValidationError(name, allowed, float(x), i)
+# Elements of the chain: "> 0 and finite" / ">= 0 and finite", the error carrying the float value.
+_POSITIVE_ELEMENT = Real(lo=0.0, lo_open=True, report_float=True)
+_NONNEGATIVE_ELEMENT = Real(lo=0.0, report_float=True)
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,27 +75,22 @@ class Device:
     band_min: float = 1.0
 
     def __post_init__(self) -> None:
-        m = _vector("masses", self.masses, None)
+        m = vector("masses", self.masses, None)
         n = m.size
         if n < 1:
             raise ValidationError("masses", "at least one mass", [])
-        k = _vector("stiffnesses", self.stiffnesses, n - 1)
-        b = _vector("dampings", self.dampings, n - 1)
-        g = _vector("ground_dampings", np.zeros(n) if self.ground_dampings is None else self.ground_dampings, n)
-        _check("masses", m, positive=True)
-        _check("stiffnesses", k, positive=True)
-        _check("dampings", b, positive=False)
-        _check("ground_dampings", g, positive=False)
-        T = self.sample_time
-        if isinstance(T, bool) or not isinstance(T, (int, float, np.floating, np.integer)) or not math.isfinite(T) or T <= 0:
-            raise ValidationError("sample_time", "> 0 and finite (s)", T)
-        s = self.sensor_element
-        if isinstance(s, bool) or not isinstance(s, (int, np.integer)) or not (0 <= s <= max(n - 2, 0)) or n < 2 and s != 0:
-            raise ValidationError("sensor_element", f"an integer in [0, {max(n - 2, 0)}]", s)
-        wmin = self.band_min
-        nyq = math.pi / float(T)
-        if isinstance(wmin, bool) or not isinstance(wmin, (int, float, np.floating, np.integer)) or not math.isfinite(wmin) or not (0 < wmin < nyq):
-            raise ValidationError("band_min", f"> 0 and < Nyquist = {nyq:.6g} rad/s", wmin)
+        k = vector("stiffnesses", self.stiffnesses, n - 1)
+        b = vector("dampings", self.dampings, n - 1)
+        g = vector("ground_dampings", np.zeros(n) if self.ground_dampings is None else self.ground_dampings, n)
+        check_elements("masses", m, _POSITIVE_ELEMENT)
+        check_elements("stiffnesses", k, _POSITIVE_ELEMENT)
+        check_elements("dampings", b, _NONNEGATIVE_ELEMENT)
+        check_elements("ground_dampings", g, _NONNEGATIVE_ELEMENT)
+        T = positive("sample_time", self.sample_time, "s")
+        s = integer("sensor_element", self.sensor_element, 0, max(n - 2, 0))
+        nyq = math.pi / T
+        wmin = real("band_min", self.band_min, lo=0.0, lo_open=True, hi=nyq, hi_open=True,
+                    allowed=f"> 0 and < Nyquist = {nyq:.6g} rad/s")
         object.__setattr__(self, "masses", m)
         object.__setattr__(self, "stiffnesses", k)
         object.__setattr__(self, "dampings", b)

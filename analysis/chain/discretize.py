@@ -1,4 +1,9 @@
-"""Discretization used by the two-port analysis (Adams et al., eq. 2, 4, 16, 30).
+"""Discretization: the exact zero-order hold, and the closed forms used by the two-port analysis
+(Adams et al., eq. 2, 4, 16, 30).
+
+:func:`discretize_zoh` is the one exact ZOH discretization of a state space (Van Loan's matrix
+exponential), used by the sampled-data loop (Adams et al., section III), its simulator and the
+wall controller of Eom, Suh & Yi (the ``discrete`` hold and every step response, Figs. 7, 10).
 
 On the unit circle ``z = exp(j w T)`` every quantity is written with ``theta = w T / 2`` in
 closed forms that are free of cancellation:
@@ -16,8 +21,10 @@ exactly ``b cos^2(theta)`` although the naive product subtracts two large number
 from __future__ import annotations
 
 import numpy as np
+from scipy import linalg
 
 __all__ = [
+    "discretize_zoh",
     "theta_of",
     "tustin_image",
     "hold_factor",
@@ -26,6 +33,23 @@ __all__ = [
     "mass_damper_admittance",
     "check_frequencies",
 ]
+
+
+def discretize_zoh(A: np.ndarray, B: np.ndarray, h) -> tuple[np.ndarray, np.ndarray]:
+    """Exact zero-order-hold discretization ``(Phi, Gamma)`` by one (batched) ``expm`` of
+    ``[[A, B], [0, 0]] h`` (Van Loan): ``x[k+1] = Phi x[k] + Gamma u[k]`` for ``u`` held.
+
+    ``A`` (..., N, N) and ``B`` (..., N, m) may carry leading batch axes; ``h`` is a step length
+    or an array of them (a further leading batch axis, broadcast with those of ``A`` and ``B``).
+    """
+    N, m = A.shape[-1], B.shape[-1]
+    hb = np.asarray(h, dtype=float)[..., None, None]
+    Ah, Bh = A * hb, B * hb
+    aug = np.zeros(np.broadcast_shapes(Ah.shape[:-2], Bh.shape[:-2]) + (N + m, N + m))
+    aug[..., :N, :N] = Ah
+    aug[..., :N, N:] = Bh
+    E = linalg.expm(aug)
+    return E[..., :N, :N], E[..., :N, N:]
 
 
 def check_frequencies(w, sample_time: float) -> np.ndarray:

@@ -80,6 +80,29 @@ def resonance_grid(device: Device, modes: np.ndarray, base_points: int = 300, ma
     return np.unique(w)
 
 
+def _lowest_local_minima(vv: np.ndarray, candidates: int) -> np.ndarray:
+    """Indices of the ``candidates`` lowest finite local minima of ``vv`` (NaN read as inf), lowest first."""
+    left = np.concatenate([[np.inf], vv[:-1]])
+    right = np.concatenate([vv[1:], [np.inf]])
+    is_min = (vv <= left) & (vv <= right) & np.isfinite(vv)  # an infinite plateau cannot be refined
+    idx = np.flatnonzero(is_min)
+    return idx[np.argsort(vv[idx])][:candidates]
+
+
+def _shrink_brackets(sw: np.ndarray, best_w: np.ndarray, a: np.ndarray, b: np.ndarray, lo: float,
+                     hi: float) -> tuple[np.ndarray, np.ndarray]:
+    """New brackets: the nearest *distinct* neighbours of the best point among the sorted ``sw``.
+
+    An interior point may coincide with the previous best (exactly, or to an ulp after
+    exp/log); taking index neighbours would then collapse the bracket onto ``best_w`` and lose
+    the side holding the minimum.  Points closer than 1e-3 of the bracket width count as equal.
+    """
+    eps = (1e-3 * (b - a))[:, None]
+    below = np.where(sw < best_w[:, None] - eps, sw, sw[:, :1]).max(axis=1)
+    above = np.where(sw > best_w[:, None] + eps, sw, sw[:, -1:]).min(axis=1)
+    return np.maximum(below, lo), np.minimum(above, hi)
+
+
 def refine_minima(
     func: Callable[[np.ndarray], np.ndarray],
     w: np.ndarray,
@@ -104,13 +127,9 @@ def refine_minima(
     if nw == 0:
         return w, v
     vv = np.where(np.isnan(v), np.inf, v)
-    left = np.concatenate([[np.inf], vv[:-1]])
-    right = np.concatenate([vv[1:], [np.inf]])
-    is_min = (vv <= left) & (vv <= right) & np.isfinite(vv)  # an infinite plateau cannot be refined
-    idx = np.flatnonzero(is_min)
+    idx = _lowest_local_minima(vv, candidates)
     if idx.size == 0:
         return w[:0], v[:0]
-    idx = idx[np.argsort(vv[idx])][:candidates]
     a = np.where(idx > 0, w[np.maximum(idx - 1, 0)], lo)
     b = np.where(idx < nw - 1, w[np.minimum(idx + 1, nw - 1)], hi)
     best_w = w[idx].copy()
@@ -135,14 +154,6 @@ def refine_minima(
         j = np.argmin(sv, axis=1)
         best_w = sw[rows, j]
         best_v = sv[rows, j]
-        # new bracket: the nearest *distinct* neighbours of the best point.  An interior point
-        # may coincide with the previous best (exactly, or to an ulp after exp/log); taking
-        # index neighbours would then collapse the bracket onto best_w and lose the side
-        # holding the minimum.  Points closer than 1e-3 of the bracket width count as equal.
-        eps = (1e-3 * (b - a))[:, None]
-        below = np.where(sw < best_w[:, None] - eps, sw, sw[:, :1]).max(axis=1)
-        above = np.where(sw > best_w[:, None] + eps, sw, sw[:, -1:]).min(axis=1)
-        a = np.maximum(below, lo)
-        b = np.minimum(above, hi)
+        a, b = _shrink_brackets(sw, best_w, a, b, lo, hi)
     order = np.argsort(best_v)
     return best_w[order], best_v[order]

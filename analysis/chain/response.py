@@ -4,7 +4,9 @@ The chain's impedance matrix ``A(s) = M s + B + K/s`` (eq. 25) is tridiagonal.  
 an n-by-n solve per frequency, the responses to a unit force at either end are obtained
 from continued-fraction sweeps (driving-point impedance of the sub-chain to the right or
 left of a node) and products of transfer ratios.  Everything is vectorized over frequency
-and costs O(N n) time and memory.
+and costs O(N n) time and memory.  The handle impedance alone (one sweep) is
+:mod:`analysis.chain.continued_fraction`, whose kernel also gives ``y22`` here when the responses
+to a force on the actuator are not wanted.
 
 Accuracy
 --------
@@ -28,9 +30,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from analysis.chain.continued_fraction import continued_fraction, node_element_impedances
 from analysis.chain.device import Device
 
-__all__ = ["ChainResponse", "chain_response", "chain_impedances", "handle_impedance"]
+__all__ = ["ChainResponse", "chain_response"]
 
 
 @dataclass(frozen=True)
@@ -112,95 +115,6 @@ def _wsum(weights: np.ndarray, rows: np.ndarray) -> np.ndarray:
     return np.einsum("i,ij->j", weights, rows)
 
 
-def _impedances(device: Device, s: np.ndarray, termination: np.ndarray | None):
-    """Node impedances ``m_i s + g_i`` (n x N) and element impedances ``b_i + k_i/s``.
-
-    On the unit circle the Tustin image is purely imaginary, ``s = j W``; then the arrays
-    are filled part by part (see :func:`_impedances_jw`).
-    """
-    if not np.any(s.real):
-        node, elem = _impedances_jw(device, s.imag)
-    else:
-        m = device.masses
-        node = m[:, None] * s[None, :] + device.ground_dampings[:, None]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            inv_s = 1.0 / s
-        elem = device.dampings[:, None] + device.stiffnesses[:, None] * inv_s[None, :]
-    if termination is not None:
-        node[-1] += termination
-    return node, elem
-
-
-def _impedances_jw(device: Device, W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Node and element impedances at ``s = j W`` (W real, shape N).
-
-    Real and imaginary parts are written into an ``(rows, N, 2)`` float buffer that is then
-    viewed as complex (about 8x faster than complex broadcasting for long chains, and
-    faster than writing the strided ``.real``/``.imag`` views).
-    """
-    m = device.masses
-    n, N = m.size, W.size
-    fn = np.empty((n, N, 2))
-    fn[:, :, 0] = device.ground_dampings[:, None]
-    np.multiply.outer(m, W, out=fn[:, :, 1])
-    fe = np.empty((n - 1, N, 2))
-    fe[:, :, 0] = device.dampings[:, None]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        np.multiply.outer(-device.stiffnesses, 1.0 / W, out=fe[:, :, 1])
-    return fn.view(complex)[:, :, 0], fe.view(complex)[:, :, 0]
-
-
-def handle_impedance(device: Device, s: np.ndarray, termination: np.ndarray | None = None,
-                     impedances: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
-    """Driving-point impedance at the handle (mass 0), optionally with an impedance from
-    the actuator mass to ground.  Right continued-fraction sweep only: 4 operations per mass.
-
-    ``impedances`` may pass the (node, element) arrays of :func:`chain_impedances` for the
-    same ``s`` (they depend on the device only), so that a coupling change does not rebuild
-    them.
-    """
-    s = np.asarray(s, dtype=complex)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        node, elem = _impedances(device, s, None) if impedances is None else impedances
-        R = node[-1] if termination is None else node[-1] + termination
-        for i in range(device.n - 2, -1, -1):
-            e = elem[i]
-            R = node[i] + e * R / (e + R)
-    return R
-
-
-def chain_impedances(device: Device, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Node impedances ``m_i s + g_i`` and element impedances ``b_i + k_i/s`` (read-only)."""
-    node, elem = _impedances(device, np.asarray(s, dtype=complex), None)
-    node.setflags(write=False)
-    elem.setflags(write=False)
-    return node, elem
-
-
-def frozen_impedances(device: Device, W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`chain_impedances` at ``s = j W`` (W real), read-only."""
-    node, elem = _impedances_jw(device, np.asarray(W, dtype=float))
-    node.setflags(write=False)
-    elem.setflags(write=False)
-    return node, elem
-
-
-def terminated_handle_impedance(device: Device, impedances: tuple[np.ndarray, np.ndarray],
-                                termination: np.ndarray) -> np.ndarray:
-    """:func:`handle_impedance` from prebuilt impedances, with a termination."""
-    node, elem = impedances
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        R = node[-1] + termination
-        d = np.empty_like(R)
-        for i in range(device.n - 2, -1, -1):  # R <- node_i + e R / (e + R), in place
-            e = elem[i]
-            np.add(e, R, out=d)
-            np.multiply(e, R, out=R)
-            np.divide(R, d, out=R)
-            np.add(R, node[i], out=R)
-    return R
-
-
 def chain_response(device: Device, s: np.ndarray, termination: np.ndarray | None = None,
                    re_termination: np.ndarray | None = None, want_x: bool = True,
                    want_left: bool = True,
@@ -215,7 +129,7 @@ def chain_response(device: Device, s: np.ndarray, termination: np.ndarray | None
     ``y22``, by a continued fraction): ``re_y22`` is then ``(Re X + (Re y12)^2)/Re y11``
     (requires ``want_x``) and ``sensor_from_actuator`` is ``None``.
 
-    ``impedances`` may pass the (node, element) arrays of :func:`chain_impedances` for the
+    ``impedances`` may pass the (node, element) arrays of :func:`analysis.chain.continued_fraction.chain_impedances` for the
     same ``s``; they are not modified.
     """
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -234,6 +148,11 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
     Only the continued-fraction sweeps and the minor propagation are sequential over the
     chain (about 18 array operations per mass); node velocities follow from cumulative
     products of transfer ratios and the dissipation sums are reductions over the chain.
+
+    This is a numerical kernel, kept in one piece because the sweeps share their (n-1) x N work
+    arrays in place (``r`` becomes ``nu``, ``inv`` becomes ``G``) and the fused pass at the end
+    consumes them; split into functions, each would need its own copies of these arrays,
+    which is the memory and time the O(N n) design avoids (see the module doc).
     """
     s = np.asarray(s, dtype=complex)
     n = device.n
@@ -241,7 +160,7 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
     bb = device.dampings
     g = device.ground_dampings
     if impedances is None:
-        node, elem = _impedances(device, s, termination)
+        node, elem = node_element_impedances(device, s, termination)
     else:
         node, elem = impedances
         if termination is not None:
@@ -298,16 +217,8 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
         for i in range(n - 2, -1, -1):
             np.multiply(w[i + 1], tl[i], out=w[i])
         om_neg = w[1:] * rl  # -om: the sign only matters for the gauge reading below
-    else:
-        L = node[0].copy()
-        d = np.empty_like(L)
-        for i in range(1, n):  # L <- node_i + e L / (e + L), in place
-            e = elem[i - 1]
-            np.add(e, L, out=d)
-            np.multiply(e, L, out=L)
-            np.divide(L, d, out=L)
-            np.add(L, node[i], out=L)
-        y22_only = 1.0 / L
+    else:  # the same continued fraction seen from the actuator end: L <- node_i + e L / (e + L)
+        y22_only = 1.0 / continued_fraction(node[::-1], elem[::-1], node[0].copy())
 
     # real parts as dissipated power (non-negative terms only)
     gi = np.flatnonzero(g)  # usually one damper to ground: touch only those rows

@@ -1,24 +1,35 @@
 """Device profiles: the Profile record, its schema, migrations and files.
+
+The modules are layered, each importing only those listed before it (no cycle):
+
+* :mod:`.errors` -- :class:`ProfileError` (file and JSON path of the offending value);
+* :mod:`.sections` -- the optional sections (wall, observer, simulation) and the migration steps;
+* :mod:`.model` -- the :class:`Profile` record (light: it holds the settings records of
+  :mod:`analysis.transparency.settings` and :mod:`analysis.sampled.scenarios`, never the wall
+  design or the simulator);
+* :mod:`.fields` -- checking the fields of a current-schema profile dict;
+* :mod:`.files` -- strict JSON reading, atomic writing, the bundled presets;
+* :mod:`.io` -- schema version, migrations, ``load_profile``/``save_profile``.
 """
 
 from __future__ import annotations
 
-from .io import (  # noqa: F401
-    DISPLAYS,
+from .errors import ProfileError
+from .files import bundled_profiles, read_json, write_atomically
+from .fields import profile_from_current
+from .io import (
     MIGRATIONS,
     SCHEMA_VERSION,
-    Profile,
-    ProfileError,
-    bundled_profiles,
     load_profile,
     migrate,
     profile_from_dict,
     profile_to_dict,
     save_profile,
 )
-from .sections import (  # noqa: F401
-    SECTION_KEYS,
+from .model import DISPLAYS, SCALAR_FIELDS, Profile, ScalarField
+from .sections import (
     MIGRATION_STEPS,
+    SECTION_KEYS,
     SimulationSection,
     parse_sections,
     sections_to_dict,
@@ -41,4 +52,9 @@ __all__ = [
     "SimulationSection",
     "parse_sections",
     "sections_to_dict",
+    "SCALAR_FIELDS",
+    "ScalarField",
+    "profile_from_current",
+    "read_json",
+    "write_atomically",
 ]

@@ -14,10 +14,10 @@ from collections.abc import Mapping
 
 import numpy as np
 
-__all__ = ["ProfileError"]
+__all__ = ["MISSING", "NonFinite", "ProfileError", "describe"]
 
 #: Stands for "the key is absent" (``None`` is JSON ``null``).
-_MISSING = object()
+MISSING = object()
 
 
 class ProfileError(ValueError):
@@ -52,9 +52,9 @@ class ProfileError(ValueError):
         super().__init__(prefix + reason)
 
     @classmethod
-    def at(cls, json_path: str, expected: str, got: object = _MISSING) -> ProfileError:
+    def at(cls, json_path: str, expected: str, got: object = MISSING) -> ProfileError:
         """``$.x: expected <expected>, got <value>`` (``missing`` when the key is absent)."""
-        return cls(f"expected {expected}, got {_describe(got)}", json_path=json_path, expected=expected)
+        return cls(f"expected {expected}, got {describe(got)}", json_path=json_path, expected=expected)
 
     def with_path(self, path: str | os.PathLike | None) -> ProfileError:
         """The same error attributed to file ``path``."""
@@ -65,8 +65,9 @@ class ProfileError(ValueError):
         return err
 
 
-class _NonFinite:
-    """Stands for a NaN / Infinity literal in the JSON text; rejected wherever it appears."""
+class NonFinite:
+    """Stands for a NaN / Infinity literal in the JSON text (the strict reader's ``parse_constant``);
+    rejected wherever it appears."""
 
     __slots__ = ("literal",)
 
@@ -77,11 +78,11 @@ class _NonFinite:
         return self.literal
 
 
-def _describe(value: object) -> str:
-    """A short JSON-flavoured description of a rejected value."""
-    if value is _MISSING:
+def describe(value: object) -> str:
+    """A short JSON-flavoured description of a rejected value (``"the string \"x\""``, ``"-1.0"``)."""
+    if value is MISSING:
         return "nothing (the key is missing)"
-    if isinstance(value, _NonFinite):
+    if isinstance(value, NonFinite):
         return f"{value.literal} (NaN and Infinity are not allowed)"
     if value is None:
         return "null"

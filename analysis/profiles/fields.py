@@ -3,7 +3,7 @@
 Every check reports a :class:`ProfileError` at the JSON path of the offending value;
 :class:`~analysis.errors.ValidationError` from :class:`Device` or :class:`Profile` is translated
 to the matching JSON path.  Older schema versions are migrated first, by
-:func:`analysis.profiles.migrate`.
+:func:`analysis.profiles.io.migrate`.
 
 Numerics only: this module never imports Qt.
 """
@@ -11,14 +11,16 @@ Numerics only: this module never imports Qt.
 from __future__ import annotations
 
 import json
-import math
 from collections.abc import Mapping
 
 from analysis.chain.device import Device
+from analysis.checks import Real
 from analysis.errors import ValidationError
-from analysis.profiles.errors import _MISSING, ProfileError
-from analysis.profiles.model import _SCALARS, DISPLAYS, Profile, _is_real
+from analysis.profiles.errors import MISSING, ProfileError
+from analysis.profiles.model import DISPLAYS, SCALAR_FIELDS, Profile
 from analysis.profiles.sections import SECTION_KEYS, parse_sections
+
+__all__ = ["profile_from_current"]
 
 _TOP_KEYS = {
     "schema_version",
@@ -49,7 +51,7 @@ _FIELD_PATHS = {
     "notes": "$.notes",
     "display": "$.display",
     "device": "$.device",
-    **{name: jp for name, (jp, _, _) in _SCALARS.items()},
+    **{name: spec.json_path for name, spec in SCALAR_FIELDS.items()},
 }
 
 
@@ -60,7 +62,7 @@ def _translate(err: ValidationError, damping_key: str = "dampings") -> ProfileEr
     if err.index is not None:
         json_path += f"[{err.index}]"
     expected = err.allowed
-    if err.index is not None or err.field in ("sample_time", "band_min", *_SCALARS):
+    if err.index is not None or err.field in ("sample_time", "band_min", *SCALAR_FIELDS):
         if not expected.startswith(("a ", "an ", "exactly", "at least")):
             expected = "a number " + expected
     out = ProfileError.at(json_path, expected, err.value)
@@ -68,11 +70,11 @@ def _translate(err: ValidationError, damping_key: str = "dampings") -> ProfileEr
     return out
 
 
-def _get(obj: Mapping, key: str, jp: str, default: object = _MISSING, expected: str = "a value") -> object:
+def _get(obj: Mapping, key: str, jp: str, default: object = MISSING, expected: str = "a value") -> object:
     if key in obj:
         return obj[key]
-    if default is _MISSING:
-        raise ProfileError.at(f"{jp}.{key}", expected, _MISSING)
+    if default is MISSING:
+        raise ProfileError.at(f"{jp}.{key}", expected, MISSING)
     return default
 
 
@@ -93,15 +95,11 @@ def _object(value: object, jp: str, allowed_keys: set[str]) -> Mapping:
 def _number(value: object, jp: str, allowed: str, positive: bool | None) -> float:
     """A finite real number; ``positive`` True: > 0, False: >= 0, None: any sign."""
     expected = f"a number {allowed}"
-    if not _is_real(value):
-        raise ProfileError.at(jp, expected, value)
+    rule = Real(lo=None if positive is None else 0.0, lo_open=bool(positive), allowed=expected, report_float=True)
     try:
-        x = float(value)
-    except OverflowError:
-        raise ProfileError.at(jp, expected, value) from None
-    if not math.isfinite(x) or (positive is True and x <= 0) or (positive is False and x < 0):
-        raise ProfileError.at(jp, expected, x)
-    return x
+        return rule(jp, value)
+    except ValidationError as err:
+        raise ProfileError.at(jp, expected, err.value) from None
 
 
 def _numbers(
@@ -121,8 +119,8 @@ def _string(value: object, jp: str, nonempty: bool = False) -> str:
     return value
 
 
-def _device(data: Mapping) -> Device:
-    dev = _object(_get(data, "device", "$", expected="a JSON object"), "$.device", _DEVICE_KEYS)
+def _chain(dev: Mapping) -> tuple[list[float], list[float], str, list[float], list[float]]:
+    """Masses, stiffnesses, the damping key and its values, and the ground dampings of ``$.device``."""
     masses = _numbers(
         _get(dev, "masses", "$.device", expected="a list of masses > 0 (kg)"),
         "$.device.masses",
@@ -162,6 +160,13 @@ def _device(data: Mapping) -> Device:
         n,
         "one per mass",
     )
+    return masses, stiffnesses, damping_key, values, ground
+
+
+def _device(data: Mapping) -> Device:
+    dev = _object(_get(data, "device", "$", expected="a JSON object"), "$.device", _DEVICE_KEYS)
+    masses, stiffnesses, damping_key, values, ground = _chain(dev)
+    n = len(masses)
     sensor = _get(dev, "sensor_element", "$.device", 0)
     if isinstance(sensor, bool) or not isinstance(sensor, int):
         raise ProfileError.at("$.device.sensor_element", f"an integer in [0, {max(n - 2, 0)}]", sensor)
@@ -182,7 +187,7 @@ def _device(data: Mapping) -> Device:
         "band_min": band_min,
     }
     try:
-        if has_b:
+        if damping_key == "dampings":
             return Device(masses=masses, stiffnesses=stiffnesses, dampings=values, **kwargs)
         return Device.from_damping_ratios(masses, stiffnesses, values, **kwargs)
     except ValidationError as err:
@@ -194,8 +199,11 @@ def _pair(data: Mapping, key: str, names: tuple[str, str]) -> tuple[object, obje
     return tuple(_get(obj, name, f"$.{key}", expected="a number") for name in names)
 
 
-def _build_current(data: Mapping) -> Profile:
-    """The :class:`Profile` of a dict already migrated to the current schema version."""
+def profile_from_current(data: Mapping) -> Profile:
+    """The :class:`Profile` of a dict already migrated to the current schema version.
+
+    Raises :class:`ProfileError` at the JSON path of the first offending value.
+    """
     _object(data, "$", _TOP_KEYS)
     name = _string(_get(data, "name", "$", expected="a non-empty string"), "$.name", nonempty=True)
     notes = _string(_get(data, "notes", "$", ""), "$.notes")
@@ -208,8 +216,8 @@ def _build_current(data: Mapping) -> Profile:
     kp, kd = _pair(data, "pd_gains", ("stiffness", "damping"))
     scalars = {"kc": kc, "bc": bc, "mc": mc, "bc_adm": bc_adm, "kp": kp, "kd": kd}
     for field_name, value in scalars.items():
-        jp, allowed, positive = _SCALARS[field_name]
-        scalars[field_name] = _number(value, jp, allowed, positive)
+        spec = SCALAR_FIELDS[field_name]
+        scalars[field_name] = _number(value, spec.json_path, spec.allowed, spec.positive)
     sections = parse_sections(data)
     try:
         return Profile(name=name, notes=notes, device=device, display=display, **scalars, **sections)

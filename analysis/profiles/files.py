@@ -14,10 +14,10 @@ import stat
 import tempfile
 from pathlib import Path
 
-from analysis.profiles.errors import ProfileError, _NonFinite
+from analysis.profiles.errors import NonFinite, ProfileError
 from analysis.resources import resource_path
 
-__all__ = ["bundled_profiles"]
+__all__ = ["bundled_profiles", "read_json", "write_atomically"]
 
 
 class _DuplicateKey(Exception):
@@ -33,7 +33,7 @@ def _reject_duplicates(pairs: list[tuple[str, object]]) -> dict:
     return out
 
 
-def _read_json(path: str | os.PathLike) -> object:
+def read_json(path: str | os.PathLike) -> object:
     """The parsed JSON of file ``path`` (UTF-8, optional BOM; no NaN, Infinity or duplicate keys).
 
     Raises :class:`ProfileError` and nothing else.
@@ -49,7 +49,7 @@ def _read_json(path: str | os.PathLike) -> object:
     except UnicodeDecodeError as exc:
         raise ProfileError(f"not UTF-8 text (byte {exc.start}): {exc.reason}", path=path) from exc
     try:
-        return json.loads(text, parse_constant=_NonFinite, object_pairs_hook=_reject_duplicates)
+        return json.loads(text, parse_constant=NonFinite, object_pairs_hook=_reject_duplicates)
     except json.JSONDecodeError as exc:
         raise ProfileError(
             f"invalid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg}",
@@ -67,7 +67,7 @@ def _read_json(path: str | os.PathLike) -> object:
 
 
 def _target_path(path: str | os.PathLike) -> Path:
-    """The real path that ``path`` names (symlinks resolved), for :func:`_write_atomically`."""
+    """The real path that ``path`` names (symlinks resolved), for :func:`write_atomically`."""
     try:
         return Path(os.path.realpath(os.fspath(path)))
     except (TypeError, ValueError) as exc:
@@ -80,14 +80,15 @@ def _new_file_mode() -> int:
     return 0o666 & ~umask
 
 
-def _write_atomically(target: Path, text: str, path: str | os.PathLike) -> None:
-    """Write ``text`` to ``target`` atomically; ``path`` (as the caller gave it) is for errors.
+def write_atomically(path: str | os.PathLike, text: str) -> None:
+    """Write ``text`` to the file ``path`` names (symlinks resolved) atomically.
 
     The text goes to a temporary file in the same directory, which is flushed, fsynced and then
-    renamed over ``target`` (keeping the permissions of an existing file); on any failure the
-    temporary file is removed and an existing file at ``target`` is left untouched.  Raises
-    :class:`ProfileError` (with the OSError as its cause).
+    renamed over the target (keeping the permissions of an existing file); on any failure the
+    temporary file is removed and an existing file is left untouched.  Raises
+    :class:`ProfileError` naming ``path`` as given (with the OSError as its cause).
     """
+    target = _target_path(path)
     tmp_name = None
     try:
         fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)

@@ -2,7 +2,7 @@
 
 A profile file looks like this (schema version 3; the optional sections ``wall``,
 ``observer`` (schema 2) and ``simulation`` (schema 3) are described in
-:mod:`analysis.profile_sections`)::
+:mod:`analysis.profiles.sections`)::
 
     {"schema_version": 3, "name": "HBFD", "notes": "...",
      "device": {"masses": [...], "stiffnesses": [...], "dampings": [...],
@@ -22,12 +22,13 @@ Every problem with a file is reported as a :class:`ProfileError` naming the file
 path of the offending value, e.g. ``hbfd.json: $.device.masses[2]: expected a number > 0 and
 finite, got -1.0``.  Older schema versions are brought up to date by :data:`MIGRATIONS`.
 
-The work is split by what it holds: :mod:`analysis.profile_errors` (:class:`ProfileError`),
-:mod:`analysis.profile_model` (the :class:`Profile` record), :mod:`analysis.profile_fields`
-(checking the fields of a current-schema dict), :mod:`analysis.profile_files` (strict JSON
-reading, atomic writing, bundled presets) and :mod:`analysis.profile_sections` (the optional
-sections).  This module holds the schema version, the migrations and the public entry points,
-and re-exports the public names of the others.
+The work is split by what it holds, each module importing only those before it:
+:mod:`analysis.profiles.errors` (:class:`ProfileError`), :mod:`analysis.profiles.sections` (the
+optional sections and their migrations), :mod:`analysis.profiles.model` (the :class:`Profile`
+record), :mod:`analysis.profiles.fields` (checking the fields of a current-schema dict),
+:mod:`analysis.profiles.files` (strict JSON reading, atomic writing, bundled presets).  This
+module holds the schema version, the migrations and the public entry points, and re-exports the
+public names of the others.
 
 Numerics only: this module never imports Qt.
 """
@@ -40,8 +41,8 @@ import os
 from collections.abc import Callable, Mapping
 
 from analysis.profiles.errors import ProfileError
-from analysis.profiles.fields import _build_current
-from analysis.profiles.files import _read_json, _target_path, _write_atomically, bundled_profiles
+from analysis.profiles.fields import profile_from_current
+from analysis.profiles.files import bundled_profiles, read_json, write_atomically
 from analysis.profiles.model import DISPLAYS, Profile
 from analysis.profiles.sections import MIGRATION_STEPS, sections_to_dict
 
@@ -130,7 +131,7 @@ def migrate(data: Mapping) -> dict:
 def _build(data: object) -> Profile:
     if not isinstance(data, Mapping):
         raise ProfileError.at("$", "a JSON object", data)
-    return _build_current(migrate(data))
+    return profile_from_current(migrate(data))
 
 
 def profile_from_dict(data: object, path: str | os.PathLike | None = None) -> Profile:
@@ -177,7 +178,7 @@ def profile_to_dict(profile: Profile) -> dict:
 
 def load_profile(path: str | os.PathLike) -> Profile:
     """Read and validate a profile file.  Raises :class:`ProfileError` and nothing else."""
-    return profile_from_dict(_read_json(path), path)
+    return profile_from_dict(read_json(path), path)
 
 
 def save_profile(profile: Profile, path: str | os.PathLike) -> None:
@@ -187,9 +188,8 @@ def save_profile(profile: Profile, path: str | os.PathLike) -> None:
     renamed over ``path``; on any failure the temporary file is removed and an existing file at
     ``path`` is left untouched.  Raises :class:`ProfileError` (with the OSError as its cause).
     """
-    target = _target_path(path)
     try:
         text = json.dumps(profile_to_dict(profile), indent=2, allow_nan=False) + "\n"
     except Exception as exc:  # noqa: BLE001
         raise ProfileError(f"cannot save: {type(exc).__name__}: {exc}", path=path) from exc
-    _write_atomically(target, text, path)
+    write_atomically(path, text)

@@ -1,7 +1,10 @@
 """The :class:`Profile` record: a named device with its couplings, gains and optional sections.
 
-Building one validates every field (raising :class:`~analysis.errors.ValidationError`);
-reading and writing profiles as JSON is :mod:`analysis.profiles`.
+Building one validates every field (raising :class:`~analysis.errors.ValidationError`, by the
+validators of :mod:`analysis.checks`); reading and writing profiles as JSON is
+:mod:`analysis.profiles.io`.  This module imports only light modules (the device, the settings
+records of :mod:`analysis.transparency.settings` and :mod:`analysis.sampled.scenarios`), never
+the wall design or the simulator.
 
 Numerics only: this module never imports Qt.
 """
@@ -9,38 +12,44 @@ Numerics only: this module never imports Qt.
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
-
-import numpy as np
+from typing import NamedTuple
 
 from analysis.chain.device import Device
+from analysis.checks import Real, choice, string
 from analysis.errors import ValidationError
-from analysis.transparency.observer import ObserverSettings
 from analysis.profiles.sections import SimulationSection
-from analysis.transparency.settings import WallSettings
+from analysis.transparency.settings import ObserverSettings, WallSettings
 
-__all__ = ["DISPLAYS", "Profile"]
+__all__ = ["DISPLAYS", "SCALAR_FIELDS", "ScalarField", "Profile"]
 
 #: The two display types (section III impedance display, section IV admittance display).
 DISPLAYS = ("impedance", "admittance")
 
-# Profile field -> (JSON path, allowed range); used for validation and error translation.
-_SCALARS: dict[str, tuple[str, str, bool]] = {
-    # name: (json path, allowed text, strictly positive)
-    "kc": ("$.impedance_coupling.stiffness", ">= 0 and finite (N/m)", False),
-    "bc": ("$.impedance_coupling.damping", ">= 0 and finite (N s/m)", False),
-    "mc": ("$.admittance_coupling.mass", "> 0 and finite (kg)", True),
-    "bc_adm": ("$.admittance_coupling.damping", "> 0 and finite (N s/m)", True),
-    "kp": ("$.pd_gains.stiffness", ">= 0 and finite (N/m)", False),
-    "kd": ("$.pd_gains.damping", ">= 0 and finite (N s/m)", False),
+
+class ScalarField(NamedTuple):
+    """Where a scalar :class:`Profile` field lives in the JSON and which values it takes."""
+
+    json_path: str
+    allowed: str
+    positive: bool  # > 0 (True) or >= 0 (False)
+
+    @property
+    def rule(self) -> Real:
+        """The :class:`~analysis.checks.Real` rule of the field (errors carry the float value)."""
+        return Real(lo=0.0, lo_open=self.positive, allowed=self.allowed, not_real="a real number " + self.allowed,
+                    report_float=True)
+
+
+#: Profile field -> its JSON path and allowed range; used for validation and error translation.
+SCALAR_FIELDS: dict[str, ScalarField] = {
+    "kc": ScalarField("$.impedance_coupling.stiffness", ">= 0 and finite (N/m)", False),
+    "bc": ScalarField("$.impedance_coupling.damping", ">= 0 and finite (N s/m)", False),
+    "mc": ScalarField("$.admittance_coupling.mass", "> 0 and finite (kg)", True),
+    "bc_adm": ScalarField("$.admittance_coupling.damping", "> 0 and finite (N s/m)", True),
+    "kp": ScalarField("$.pd_gains.stiffness", ">= 0 and finite (N/m)", False),
+    "kd": ScalarField("$.pd_gains.damping", ">= 0 and finite (N s/m)", False),
 }
-
-
-def _is_real(value: object) -> bool:
-    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
-        value, (bool, np.bool_)
-    )
 
 
 @dataclass(frozen=True)
@@ -87,25 +96,13 @@ class Profile:
             value = getattr(self, field_name)
             if value is not None and not isinstance(value, cls):
                 raise ValidationError(field_name, f"None or {cls.__name__}", value)
-        if not isinstance(self.name, str) or not self.name.strip():
-            raise ValidationError("name", "a non-empty string", self.name)
-        if not isinstance(self.notes, str):
-            raise ValidationError("notes", "a string", self.notes)
+        string("name", self.name, nonempty=True)
+        string("notes", self.notes)
         if not isinstance(self.device, Device):
             raise ValidationError("device", "a Device", self.device)
-        if not isinstance(self.display, str) or self.display not in DISPLAYS:
-            raise ValidationError("display", " or ".join(repr(d) for d in DISPLAYS), self.display)
-        for field_name, (_, allowed, positive) in _SCALARS.items():
-            value = getattr(self, field_name)
-            if not _is_real(value):
-                raise ValidationError(field_name, "a real number " + allowed, value)
-            try:
-                x = float(value)
-            except OverflowError:
-                raise ValidationError(field_name, allowed, value) from None
-            if not math.isfinite(x) or (x <= 0 if positive else x < 0):
-                raise ValidationError(field_name, allowed, x)
-            object.__setattr__(self, field_name, x)
+        choice("display", self.display, DISPLAYS, allowed=" or ".join(repr(d) for d in DISPLAYS))
+        for field_name, spec in SCALAR_FIELDS.items():
+            object.__setattr__(self, field_name, spec.rule(field_name, getattr(self, field_name)))
 
     def replace(self, **changes) -> Profile:
         """A copy with some fields changed, validated again (raises ValidationError)."""

@@ -6,21 +6,21 @@
   sampled-data simulator's settings and the chosen scenario).
 
 Every section is optional; an older file simply has none of them, so the migrations only
-raise the version number.  Errors name the JSON path, e.g. ``$.wall.mass``.
+raise the version number.  Errors name the JSON path, e.g. ``$.wall.mass`` or
+``$.simulation.scenario.grasp.mass``.  The sections are the settings records' own
+``to_dict``/``from_dict`` (:func:`analysis.checks.record_to_dict`, :func:`analysis.checks.record_from_dict`).
 """
 
 from __future__ import annotations
 
-import json
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
 from analysis.errors import ValidationError
-from analysis.transparency.observer import ObserverSettings
+from analysis.profiles.errors import ProfileError
 from analysis.sampled.scenarios import Scenario, SimulationOptions
-from analysis.transparency.settings import WallSettings
+from analysis.transparency.settings import ObserverSettings, WallSettings
 
 __all__ = ["SECTION_KEYS", "MIGRATION_STEPS", "SimulationSection", "parse_sections", "sections_to_dict"]
 
@@ -54,24 +54,23 @@ def _to_3(data: dict) -> dict:
 MIGRATION_STEPS = {1: _to_2, 2: _to_3}
 
 
-def _fail(json_path: str, expected: str, got: object):
-    from analysis.profiles.io import ProfileError  # profiles imports this module
-
-    return ProfileError.at(json_path, expected, got)
+#: The names the settings records give themselves in a "not an object" error (see ``from_dict``).
+_RECORD_NAMES = ("transparency", "observer", "simulation options", "scenario")
 
 
-def _section(kind: str, jp: str, value: object, cls):
+def _section(kind: str, jp: str, value: object, cls: type) -> Any:
+    """``cls.from_dict(value)``, a ValidationError as a ProfileError at its JSON path under ``jp``."""
     try:
         return cls.from_dict(value)
     except ValidationError as err:
-        where = jp
-        if err.field and err.field not in (kind, "transparency", "observer", "simulation options", "scenario"):
+        where = jp + "".join(f".{name}" for name in err.within)
+        if err.field and err.field not in (kind, *_RECORD_NAMES):
             where += f".{err.field}"
         if err.index is not None:
             where += f"[{err.index}]"
-        raise _fail(where, err.allowed, err.value) from err
+        raise ProfileError.at(where, err.allowed, err.value) from err
     except (TypeError, ValueError) as exc:
-        raise _fail(jp, f"a valid {kind} section ({exc})", value) from exc
+        raise ProfileError.at(jp, f"a valid {kind} section ({exc})", value) from exc
 
 
 def parse_sections(data: Mapping) -> dict[str, Any]:
@@ -84,10 +83,10 @@ def parse_sections(data: Mapping) -> dict[str, Any]:
     if "simulation" in data:
         sim = data["simulation"]
         if not isinstance(sim, Mapping):
-            raise _fail("$.simulation", "a JSON object with keys options and scenario", sim)
+            raise ProfileError.at("$.simulation", "a JSON object with keys options and scenario", sim)
         unknown = set(sim) - {"options", "scenario"}
         if unknown:
-            raise _fail(f"$.simulation.{sorted(map(str, unknown))[0]}", "no such key (options, scenario)", None)
+            raise ProfileError.at(f"$.simulation.{sorted(map(str, unknown))[0]}", "no such key (options, scenario)", None)
         options = _section("simulation options", "$.simulation.options", sim.get("options", {}),
                            SimulationOptions)
         scenario = _section("scenario", "$.simulation.scenario", sim.get("scenario", {}), Scenario)
@@ -95,25 +94,14 @@ def parse_sections(data: Mapping) -> dict[str, Any]:
     return out
 
 
-def _plain(value: object) -> object:
-    """JSON-safe copy (tuples to lists; non-finite floats are refused by allow_nan=False)."""
-    if isinstance(value, Mapping):
-        return {str(k): _plain(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    if isinstance(value, float) and not math.isfinite(value):
-        return json.dumps(value)  # "Infinity"-like text never reaches the file: settings encode inf
-    return value
-
-
-def sections_to_dict(wall, observer, simulation) -> dict[str, Any]:
-    """The JSON-ready sections that are present."""
+def sections_to_dict(wall: WallSettings | None, observer: ObserverSettings | None,
+                     simulation: SimulationSection | None) -> dict[str, Any]:
+    """The JSON-ready sections that are present (``inf`` written as ``"inf"``, see :mod:`analysis.checks`)."""
     out: dict[str, Any] = {}
     if wall is not None:
-        out["wall"] = _plain(wall.to_dict())
+        out["wall"] = wall.to_dict()
     if observer is not None:
-        out["observer"] = _plain(observer.to_dict())
+        out["observer"] = observer.to_dict()
     if simulation is not None:
-        out["simulation"] = {"options": _plain(simulation.options.to_dict()),
-                             "scenario": _plain(simulation.scenario.to_dict())}
+        out["simulation"] = {"options": simulation.options.to_dict(), "scenario": simulation.scenario.to_dict()}
     return out

@@ -12,51 +12,53 @@ for the real sampled loop:
 * :func:`passivity_limit` -- Colgate & Schenkel's exact passivity limit of a rigid device;
 * :func:`simulate` -- the nonlinear time-domain simulator with scenario presets.
 
-The loop model is documented in :mod:`analysis.sampled_loop`, the terminations in
-:mod:`analysis.terminations`, passivity in :mod:`analysis.passivity`, the simulator and its
-verdict detector in :mod:`analysis.simulator`, options and scenarios in
-:mod:`analysis.scenarios`.  Numpy and scipy only.
+The loop model is documented in :mod:`analysis.sampled.loop`, the controllers of the two displays
+in :mod:`analysis.sampled.controllers`, the terminations in :mod:`analysis.sampled.terminations`, passivity in :mod:`analysis.sampled.passivity`, the
+simulator and its verdict detector in :mod:`analysis.sampled.simulator`, options and scenarios in
+:mod:`analysis.sampled.scenarios`.  Numpy and scipy only.
+
+A display and an environment causality are objects here: :func:`display_loop` maps a display
+name (``"impedance"``/``"admittance"``) to :data:`IMPEDANCE_LOOP`/:data:`ADMITTANCE_LOOP`
+(:data:`DISPLAY_LOOPS`), :func:`causality_kind` maps an environment causality to
+:data:`PENALTY`/:data:`CONSTRAINT` (:data:`CAUSALITY_KINDS`); nothing else reads the names.
+
+Loading is layered: the settings records (options, scenarios, terminations) and the display loop
+objects are light and imported with the package; the loop, sweeps, passivity, results and simulator are imported on
+first use of one of their names (a PEP 562 module ``__getattr__``), so that the profile record
+can hold a scenario without loading the simulator.  ``from analysis.sampled import simulate``,
+``__all__`` and ``dir()`` work as before.
 """
 
 from __future__ import annotations
 
-from analysis.sampled.passivity import (
-    linear_stability_limit,
-    passivity_closed_form,
-    passivity_limit,
-    required_damping,
-    rigid_stability_polynomial,
-    virtual_wall,
-)
-from analysis.sampled.loop import LoopSpec, closed_loop_matrices, discretize_zoh, plant_matrices, spectral_radius
-from analysis.sampled.results import (
-    CriticalChart,
-    CriticalMassChart,
-    SimulationResult,
-    StabilityMap,
-    Verdict,
-    WorstCase,
-)
-from analysis.sampled.sweeps import (
-    MAP_PARAMETERS,
-    critical_mass,
-    critical_mass_chart,
-    critical_stiffness,
-    critical_stiffness_chart,
-    radii,
-    stability_map,
-    worst_case,
+import importlib
+
+from analysis.sampled.controllers import (
+    ADMITTANCE_LOOP,
+    DISPLAY_LOOPS,
+    IMPEDANCE_LOOP,
+    AdmittanceLoop,
+    DisplayLoop,
+    ImpedanceLoop,
+    display_loop,
 )
 from analysis.sampled.scenarios import SCENARIOS, Scenario, SimulationOptions, hbfd_options, scenario
-from analysis.sampled.simulator import Simulator, detect, simulate
 from analysis.sampled.terminations import (
+    CAUSALITIES,
+    CAUSALITY_KINDS,
     CLAMPED,
+    CONSTRAINT,
     FIRM_GRASP,
     HANDS_OFF,
+    PENALTY,
     RIGID_GRASP,
+    ConstraintCausality,
     Environment,
+    EnvironmentCausality,
     Grasp,
+    PenaltyCausality,
     Termination,
+    causality_kind,
     default_environments,
     default_grasps,
     default_terminations,
@@ -66,15 +68,28 @@ from analysis.sampled.terminations import (
 )
 
 __all__ = [
+    "ADMITTANCE_LOOP",
+    "AdmittanceLoop",
+    "CAUSALITIES",
+    "CAUSALITY_KINDS",
     "CLAMPED",
+    "CONSTRAINT",
+    "ConstraintCausality",
     "CriticalChart",
     "CriticalMassChart",
+    "DISPLAY_LOOPS",
+    "DisplayLoop",
     "Environment",
+    "EnvironmentCausality",
     "FIRM_GRASP",
     "Grasp",
     "HANDS_OFF",
+    "IMPEDANCE_LOOP",
+    "ImpedanceLoop",
     "LoopSpec",
     "MAP_PARAMETERS",
+    "PENALTY",
+    "PenaltyCausality",
     "RIGID_GRASP",
     "SCENARIOS",
     "Scenario",
@@ -85,6 +100,7 @@ __all__ = [
     "Termination",
     "Verdict",
     "WorstCase",
+    "causality_kind",
     "closed_loop_matrices",
     "critical_mass",
     "critical_mass_chart",
@@ -95,6 +111,7 @@ __all__ = [
     "default_terminations",
     "detect",
     "discretize_zoh",
+    "display_loop",
     "free_motion",
     "god_object_wall",
     "hbfd_options",
@@ -113,3 +130,28 @@ __all__ = [
     "virtual_wall",
     "worst_case",
 ]
+
+#: Heavy names -> the submodule that defines them, imported on first use.
+_LAZY = {
+    **dict.fromkeys(("linear_stability_limit", "passivity_closed_form", "passivity_limit", "required_damping",
+                     "rigid_stability_polynomial", "virtual_wall"), ".passivity"),
+    **dict.fromkeys(("LoopSpec", "closed_loop_matrices", "discretize_zoh", "plant_matrices", "spectral_radius"),
+                    ".loop"),
+    **dict.fromkeys(("CriticalChart", "CriticalMassChart", "SimulationResult", "StabilityMap", "Verdict",
+                     "WorstCase"), ".results"),
+    **dict.fromkeys(("MAP_PARAMETERS", "critical_mass", "critical_mass_chart", "critical_stiffness",
+                     "critical_stiffness_chart", "radii", "stability_map", "worst_case"), ".sweeps"),
+    **dict.fromkeys(("Simulator", "detect", "simulate"), ".simulator"),
+}
+
+
+def __getattr__(name: str) -> object:
+    if name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

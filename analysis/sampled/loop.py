@@ -12,49 +12,47 @@ discretized exactly with the matrix exponential of the augmented matrix
 Sensors (sampled at ``kT``): the encoder position of the actuator mass ``y = q[n-1]`` and the
 force gauge on element ``s = device.sensor_element``,
 ``F_meas = k_s (q_s - q_{s+1}) + b_s (q_s' - q_{s+1}')``.  The device velocity is the backward
-difference of encoder positions, as in the paper; every controller below is written in
-position form, where ``Tz/(z-1)`` applied to a backward difference is the position itself.
+difference of encoder positions, as in the paper; every controller is written in position
+form, where ``Tz/(z-1)`` applied to a backward difference is the position itself.
 
-Controllers (one step, from the samples at ``kT`` to the force held on ``[kT, (k+1)T)``)
---------------------------------------------------------------------------------------
-``delta = y - x_e`` is the deflection of the coupling; ``p`` a penetration into the wall at
-``x_w``; ``L`` the optional one-sample implementation delay between coupling and environment
-(the paper's explicit integration).  Without it, coupling and environment are solved together
-(implicit); both are linear, so that is one division.
-
-* impedance display, impedance environment (eq. 4, 5): ``F = k_c delta + b_c (delta -
-  delta[k-1])/T`` and ``F = k_obj p + b_obj (p - p[k-1])/T``; ``F_d = F_e``.  With ``L``
-  the coupling uses ``F_e[k-1]``.
-* impedance display, admittance environment (eq. 4, 6): ``F_d = F_e = Z_c (v_d - v_e)``;
-  the object ``m_e v_e' = F_e - b_e v_e`` by backward Euler (with ``L``: driven by
-  ``F_e[k-1]``); the god-object wall holds ``x_e = x_w``.
-* admittance display (eq. 13, 30): ``F_d = k_p e + k_d (e - e[k-1])/T``, ``e = y - x_com``,
-  and the coupling ``Y_cA = 1/b_c + T z/(m_c (z-1))`` (eq. 16): ``v_com = G/b_c + w``,
-  ``w[k] = w[k-1] + T G/m_c``, ``x_com[k] = x_com[k-1] + T v_com``, where ``G`` is the force
-  through the coupling.  Impedance environment (eq. 17): ``G = F_meas - F_e(x_com)``.
-  Admittance environment (eq. 18): ``v_com = v_e`` and ``F_e = F_meas - G``.
+Controllers
+-----------
+The controllers of the four architectures (impedance or admittance display, eq. 4-6, 13-18 and
+30, against an impedance or admittance environment) are the display loop objects of
+:mod:`analysis.sampled.controllers`; the environment's causality
+(:mod:`analysis.sampled.terminations`) selects the form.  A :class:`LoopSpec` names its display
+by string (``"impedance"``/``"admittance"``, as profiles do) and :attr:`LoopSpec.loop` is the
+object.
 
 A computation delay of ``d`` samples holds the force computed at step ``k`` on
 ``[(k+d)T, (k+d+1)T)``.
 
-The same step functions serve the linear analysis (arguments are coefficient rows, the wall
-is assumed engaged or free as the environment says) and the nonlinear simulator (arguments are
-floats and the wall is unilateral), so both use one implementation of the architectures.
+The same controller steps serve the closed-loop matrices below (coefficient rows) and the
+nonlinear simulator (floats), so both use one implementation of the architectures.
 """
 
 from __future__ import annotations
 
-import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from types import SimpleNamespace
+from typing import Any
 
 import numpy as np
-from scipy import linalg
 
 from analysis.chain.device import Device
+from analysis.chain.discretize import discretize_zoh
+from analysis.chain.state_space import chain_state_space
+from analysis.checks import boolean, integer
 from analysis.errors import ValidationError
-from analysis.sampled.terminations import Environment, Grasp, Termination
+from analysis.sampled.controllers import DisplayLoop, Engaged, StepResult, display_loop, linear_engaged
+from analysis.sampled.terminations import (
+    Environment,
+    EnvironmentCausality,
+    Grasp,
+    Termination,
+    causality_kind,
+)
 
 __all__ = [
     "LoopSpec",
@@ -64,6 +62,7 @@ __all__ = [
     "memory_names",
     "controller_step",
     "controller_params",
+    "override_params",
     "closed_loop_matrices",
     "spectral_radius",
     "RIGID_TOL",
@@ -73,17 +72,6 @@ __all__ = [
 #: motion (a free mass has a double pole at z = 1 in position coordinates); they count as |z| = 1.
 RIGID_TOL = 1e-6
 
-_DISPLAYS = ("impedance", "admittance")
-
-
-def _real(name: str, value: object, positive: bool = False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ValidationError(name, "a real number", value)
-    x = float(value)
-    if not math.isfinite(x) or x < 0 or (positive and x == 0):
-        raise ValidationError(name, "> 0 and finite" if positive else ">= 0 and finite", value)
-    return x
-
 
 @dataclass(frozen=True)
 class LoopSpec:
@@ -91,7 +79,7 @@ class LoopSpec:
 
     ``coupling`` is ``(k_c, b_c)`` for an impedance display and ``(m_c, b_c)`` for an
     admittance display; ``pd = (k_p, k_d)`` is the position loop of an admittance display
-    (default the paper's 50 kN/m, 100 N s/m).
+    (default the paper's 50 kN/m, 100 N s/m).  :attr:`loop` is the display's loop object.
     """
 
     display: str = "impedance"
@@ -101,33 +89,16 @@ class LoopSpec:
     implementation_delay: bool = False
 
     def __post_init__(self) -> None:
-        if self.display not in _DISPLAYS:
-            raise ValidationError("display", "impedance or admittance", self.display)
-        try:
-            a, b = self.coupling
-        except (TypeError, ValueError) as exc:
-            raise ValidationError("coupling", "a pair of real numbers", self.coupling) from exc
-        if self.display == "impedance":
-            a = _real("kc", a)
-            b = _real("bc", b)
-            if a + b <= 0:
-                raise ValidationError("coupling", "k_c + b_c > 0", self.coupling)
-        else:
-            a = _real("mc", a, positive=True)
-            b = _real("bc", b, positive=True)
-        object.__setattr__(self, "coupling", (a, b))
-        try:
-            kp, kd = self.pd
-        except (TypeError, ValueError) as exc:
-            raise ValidationError("pd", "a pair (kp, kd)", self.pd) from exc
-        object.__setattr__(self, "pd", (_real("kp", kp), _real("kd", kd)))
-        d = self.delay_samples
-        if isinstance(d, bool) or not isinstance(d, (int, np.integer)) or d < 0 or d > 1000:
-            raise ValidationError("delay_samples", "an integer in [0, 1000]", d)
-        object.__setattr__(self, "delay_samples", int(d))
-        if not isinstance(self.implementation_delay, (bool, np.bool_)):
-            raise ValidationError("implementation_delay", "true or false", self.implementation_delay)
-        object.__setattr__(self, "implementation_delay", bool(self.implementation_delay))
+        coupling, pd = display_loop(self.display).check_gains(self.coupling, self.pd)
+        object.__setattr__(self, "coupling", coupling)
+        object.__setattr__(self, "pd", pd)
+        object.__setattr__(self, "delay_samples", integer("delay_samples", self.delay_samples, 0, 1000))
+        object.__setattr__(self, "implementation_delay", boolean("implementation_delay", self.implementation_delay))
+
+    @property
+    def loop(self) -> DisplayLoop:
+        """The display's loop object (:mod:`analysis.sampled.controllers`)."""
+        return display_loop(self.display)
 
 
 # -- plant ----------------------------------------------------------------------------------
@@ -135,42 +106,13 @@ def plant_matrices(device: Device, grasps: Sequence[Grasp] | None = None,
                    friction_damping: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Continuous ``A`` (G, 2n, 2n) and ``B`` (G, 2n, 2) for each grasp; inputs ``(F_d, F_ext)``.
 
-    ``friction_damping`` (length n) adds dampers to ground (the simulator's stick regime).
+    The chain's one state space (:func:`analysis.chain.state_space.chain_state_space`) with the
+    grasps added to the handle; ``friction_damping`` (length n) adds dampers to ground (the
+    simulator's stick regime).
     """
     grasps = list(grasps) if grasps is not None else [Grasp()]
-    n = device.n
-    M, Bm, K = device.matrices()
-    G = len(grasps)
-    mh = np.array([g.mass for g in grasps])
-    bh = np.array([g.damping for g in grasps])
-    kh = np.array([g.stiffness for g in grasps])
-    Ms = np.broadcast_to(np.diag(M), (G, n)).copy()
-    Ms[:, 0] += mh
-    Bs = np.broadcast_to(Bm, (G, n, n)).copy()
-    Bs[:, 0, 0] += bh
-    if friction_damping is not None:
-        Bs[:, np.arange(n), np.arange(n)] += np.asarray(friction_damping, float)
-    Ks = np.broadcast_to(K, (G, n, n)).copy()
-    Ks[:, 0, 0] += kh
-    inv = 1.0 / Ms[:, :, None]
-    A = np.zeros((G, 2 * n, 2 * n))
-    A[:, :n, n:] = np.eye(n)
-    A[:, n:, :n] = -Ks * inv
-    A[:, n:, n:] = -Bs * inv
-    Bu = np.zeros((G, 2 * n, 2))
-    Bu[:, 2 * n - 1, 0] = -1.0 / Ms[:, n - 1]
-    Bu[:, n, 1] = 1.0 / Ms[:, 0]
-    return A, Bu
-
-
-def discretize_zoh(A: np.ndarray, Bu: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
-    """Exact zero-order-hold discretization by one batched ``expm`` of ``[[A, B], [0, 0]] h``."""
-    N, m = A.shape[-1], Bu.shape[-1]
-    aug = np.zeros(A.shape[:-2] + (N + m, N + m))
-    aug[..., :N, :N] = A * h
-    aug[..., :N, N:] = Bu * h
-    E = linalg.expm(aug)
-    return E[..., :N, :N], E[..., :N, N:]
+    return chain_state_space(device, [g.mass for g in grasps], [g.damping for g in grasps],
+                             [g.stiffness for g in grasps], friction_damping)
 
 
 def sensor_rows(device: Device) -> tuple[np.ndarray, np.ndarray]:
@@ -188,35 +130,22 @@ def sensor_rows(device: Device) -> tuple[np.ndarray, np.ndarray]:
 
 
 # -- controllers ----------------------------------------------------------------------------
-def memory_names(display: str, causality: str, lag: bool) -> tuple[str, ...]:
+def memory_names(display: str | DisplayLoop, causality: str | EnvironmentCausality,
+                 lag: bool) -> tuple[str, ...]:
     """Names of the controller memory of one architecture (the values at the last sample)."""
-    if display == "impedance":
-        base = ("delta", "xe") if causality == "impedance" else ("delta", "xe", "ve")
-    else:
-        base = ("yp", "xc", "w") if causality == "impedance" else ("yp", "xc", "ve", "w")
-    return base + (("fe",) if lag else ())
-
-
-def _pick(cond, a, b):
-    if isinstance(cond, (bool, np.bool_)):
-        return a if cond else b
-    return np.where(cond, a, b)
+    return display_loop(display).memory_names(causality_kind(causality), lag)
 
 
 def controller_params(spec: LoopSpec, T: float, envs: Sequence[Environment], wall_position: float = 0.0,
                       batch: bool = True) -> SimpleNamespace:
     """Controller constants; arrays of shape (E, 1) for a batch of environments, else floats."""
 
-    def col(values):
+    def col(values: list[float]) -> Any:
         a = np.array(values, dtype=float)
         return a[:, None] if batch else float(a[0])
 
     p = SimpleNamespace(T=float(T), lag=spec.implementation_delay, xw=float(wall_position))
-    if spec.display == "impedance":
-        p.kc, p.bc = spec.coupling
-    else:
-        p.mc, p.bc = spec.coupling
-        p.kp, p.kd = spec.pd
+    spec.loop.set_gains(p, spec.coupling, spec.pd)
     p.kobj = col([e.stiffness for e in envs])
     p.bobj = col([e.damping for e in envs])
     p.me = col([e.mass for e in envs])
@@ -225,110 +154,26 @@ def controller_params(spec: LoopSpec, T: float, envs: Sequence[Environment], wal
     return p
 
 
-Engaged = Callable[[object, object], object]
-
-
-def linear_engaged(pen, flag):
-    """Linear analysis: the wall is engaged exactly when the environment says so."""
-    return flag
-
-
-def controller_step(display: str, causality: str, p: SimpleNamespace, y, f, mem: dict,
-                    engaged: Engaged = linear_engaged):
-    """One controller step: returns ``(F_d, new_memory, F_e, x_e)``.
+def controller_step(display: str | DisplayLoop, causality: str | EnvironmentCausality, p: SimpleNamespace,
+                    y: Any, f: Any, mem: dict, engaged: Engaged = linear_engaged) -> StepResult:
+    """One controller step of an architecture: returns ``(F_d, new_memory, F_e, x_e)``.
 
     ``y``, ``f`` and the memory are floats (simulation) or coefficient rows (linear
-    analysis); ``engaged(penetration, flag)`` decides wall contact (see module docstring).
+    analysis); ``engaged(penetration, flag)`` decides wall contact (see
+    :mod:`analysis.sampled.controllers`, whose loop objects this calls).
     """
-    T, lag = p.T, p.lag
-    new: dict = {}
-    if display == "impedance":
-        kcp = p.kc + p.bc / T
-        g = p.bc / T
-        dprev = mem["delta"]
-        if causality == "impedance":
-            kop = p.kobj + p.bobj / T
-            if lag:
-                fin = mem["fe"]
-                delta = (fin + g * dprev) / kcp
-                xe = y - delta
-                fe_c = p.kobj * (xe - p.xw) + (p.bobj / T) * (xe - mem["xe"])
-                fe = _pick(engaged(xe - p.xw, True), fe_c, 0.0 * fe_c)
-                u = fin
-                new["fe"] = fe
-            else:
-                xe_c = (kcp * y - g * dprev + p.kobj * p.xw + (p.bobj / T) * mem["xe"]) / (kcp + kop)
-                delta_f = g * dprev / kcp
-                xe_f = y - delta_f
-                on = engaged(xe_c - p.xw, True)
-                xe = _pick(on, xe_c, xe_f)
-                delta = y - xe
-                u = kcp * delta - g * dprev
-                fe = u
-            new["delta"], new["xe"] = delta, xe
-            return u, new, fe, xe
-        # admittance (constraint) environment, eq. (6)
-        me, be = p.me, p.bobj
-        xprev, vprev = mem["xe"], mem["ve"]
-        if lag:
-            v_f = (vprev + (T / me) * mem["fe"]) / (1.0 + T * be / me)
-            x_f = xprev + T * v_f
-        else:
-            a = me / (T * T)
-            x_f = (a * (xprev + T * vprev) + kcp * y - g * dprev + (be / T) * xprev) / (a + kcp + be / T)
-            v_f = (x_f - xprev) / T
-        on = engaged(x_f - p.xw, p.wall)
-        xe = _pick(on, 0.0 * x_f + p.xw, x_f)
-        ve = _pick(on, 0.0 * v_f, v_f)
-        delta = y - xe
-        u = kcp * delta - g * dprev
-        new["delta"], new["xe"], new["ve"] = delta, xe, ve
-        if lag:
-            new["fe"] = u
-        return u, new, u, xe
-    # admittance display
-    mc, bc = p.mc, p.bc
-    xcp, w = mem["xc"], mem["w"]
-    if causality == "impedance":
-        c = T / bc + T * T / mc
-        if lag:
-            G = f - mem["fe"]
-            xc = xcp + T * w + c * G
-            fe_c = p.kobj * (xc - p.xw) + (p.bobj / T) * (xc - xcp)
-            fe = _pick(engaged(xc - p.xw, True), fe_c, 0.0 * fe_c)
-            new["fe"] = fe
-        else:
-            cb = c * p.bobj / T
-            x_c = (xcp + T * w + c * f + c * p.kobj * p.xw + cb * xcp) / (1.0 + c * p.kobj + cb)
-            x_f = xcp + T * w + c * f
-            on = engaged(x_c - p.xw, True)
-            xc = _pick(on, x_c, x_f)
-            fe_c = p.kobj * (x_c - p.xw) + (p.bobj / T) * (x_c - xcp)
-            fe = _pick(on, fe_c, 0.0 * fe_c)
-            G = f - fe
-        new["w"] = w + (T / mc) * G
-    else:
-        me, be = p.me, p.bobj
-        c1 = 1.0 / bc + T / mc
-        vprev = mem["ve"]
-        if lag:
-            v_f = (vprev + (T / me) * mem["fe"]) / (1.0 + T * be / me)
-        else:
-            v_f = (vprev + (T / me) * (f + w / c1)) / (1.0 + T / (me * c1) + T * be / me)
-        x_f = xcp + T * v_f
-        on = engaged(x_f - p.xw, p.wall)
-        xc = _pick(on, 0.0 * x_f + p.xw, x_f)
-        ve = _pick(on, 0.0 * v_f, v_f)
-        G = (ve - w) / c1
-        fe = f - G
-        new["ve"] = ve
-        new["w"] = w + (T / mc) * G
-        if lag:
-            new["fe"] = fe
-    e = y - xc
-    u = p.kp * e + (p.kd / T) * (e - (mem["yp"] - xcp))
-    new["yp"], new["xc"] = y, xc
-    return u, new, fe, xc
+    return display_loop(display).step_for(causality_kind(causality))(p, y, f, mem, engaged)
+
+
+def override_params(p: SimpleNamespace, overrides: dict[str, np.ndarray], count: int) -> None:
+    """Replace controller constants of ``p`` by columns of ``count`` values (one per termination)."""
+    for key, val in overrides.items():
+        if not hasattr(p, key) or key in ("T", "lag", "xw", "wall"):
+            raise ValidationError("overrides", "kc, bc, mc, kp, kd, kobj, bobj or me", key)
+        arr = np.asarray(val, dtype=float).reshape(-1)
+        if arr.size != count:
+            raise ValidationError(key, f"{count} values (one per termination)", arr.size)
+        setattr(p, key, arr[:, None])
 
 
 # -- closed loop ----------------------------------------------------------------------------
@@ -351,7 +196,8 @@ def closed_loop_matrices(device: Device, spec: LoopSpec, terminations: Sequence[
     caus = {t.environment.causality for t in terms}
     if len(caus) != 1:
         raise ValidationError("terminations", "environments of one causality per call", sorted(caus))
-    causality = caus.pop()
+    kind = causality_kind(caus.pop())
+    loop = spec.loop
     T = device.sample_time
     if plants is None:
         grasps = [t.grasp for t in terms]
@@ -361,7 +207,7 @@ def closed_loop_matrices(device: Device, spec: LoopSpec, terminations: Sequence[
         Ad, Bd = plants
     Ad, Bd = Ad[plant_index], Bd[plant_index, :, 0]
     n2 = 2 * device.n
-    names = memory_names(spec.display, causality, spec.implementation_delay)
+    names = loop.memory_names(kind, spec.implementation_delay)
     d = spec.delay_samples
     N = n2 + len(names) + d
     B = len(terms)
@@ -371,14 +217,8 @@ def closed_loop_matrices(device: Device, spec: LoopSpec, terminations: Sequence[
     f = np.broadcast_to(cf @ eye[:n2], (B, N))
     mem = {nm: np.broadcast_to(eye[n2 + i], (B, N)) for i, nm in enumerate(names)}
     p = controller_params(spec, T, [t.environment for t in terms])
-    for key, val in (overrides or {}).items():
-        if not hasattr(p, key) or key in ("T", "lag", "xw", "wall"):
-            raise ValidationError("overrides", "kc, bc, mc, kp, kd, kobj, bobj or me", key)
-        arr = np.asarray(val, dtype=float).reshape(-1)
-        if arr.size != B:
-            raise ValidationError(key, f"{B} values (one per termination)", arr.size)
-        setattr(p, key, arr[:, None])
-    u, new, _, _ = controller_step(spec.display, causality, p, y, f, mem)
+    override_params(p, overrides or {}, B)
+    u, new, _, _ = loop.step_for(kind)(p, y, f, mem, linear_engaged)
     u = np.broadcast_to(u, (B, N))
     applied = np.broadcast_to(eye[n2 + len(names)], (B, N)) if d else u
     Phi = np.zeros((B, N, N))

@@ -30,7 +30,7 @@ for small ``bT/m`` it reduces to ``K < 2 (b + B)/T``.  Hulin, Preusche and Hirzi
 ("Stability boundary for haptic rendering: influence of physical damping", IROS 2006) and
 Diolaiti et al. (IEEE Trans. Robotics 22(2), 2006) give the delayed form
 ``K < (b + B) / (T (d + 1/2))``.  :func:`rigid_stability_polynomial` builds that
-polynomial (an independent route to the state-space loop of :mod:`analysis.sampled_loop`);
+polynomial (an independent route to the state-space loop of :mod:`analysis.sampled.loop`);
 :func:`linear_stability_limit` is the closed form, accurate when ``(b + B) T (d + 1/2) / m``
 is small (checked to 0.5 % in the tests).
 """
@@ -43,6 +43,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy import optimize
 
+from analysis.checks import Real, integer
 from analysis.errors import ValidationError
 
 __all__ = [
@@ -55,24 +56,15 @@ __all__ = [
 ]
 
 
-def _pos(name: str, v: object, strict: bool = True) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
-        raise ValidationError(name, "a real number", v)
-    x = float(v)
-    if not math.isfinite(x) or x < 0 or (strict and x == 0):
-        raise ValidationError(name, "> 0 and finite" if strict else ">= 0 and finite", v)
-    return x
-
-
-def _delay(d: object) -> int:
-    if isinstance(d, bool) or not isinstance(d, (int, np.integer)) or d < 0:
-        raise ValidationError("delay_samples", "an integer >= 0", d)
-    return int(d)
+# "> 0 and finite" / ">= 0 and finite", and "a real number" for a value that is not one.
+_POS = Real(lo=0.0, lo_open=True, not_real="a real number")
+_NONNEG = Real(lo=0.0, not_real="a real number")
+_VIRTUAL_DAMPING = Real(allowed="a finite real number (N s/m)")
 
 
 def virtual_wall(stiffness: float, damping: float, sample_time: float, delay_samples: int = 0) -> Callable:
     """``H(z) = z^{-d} (K + B (1 - z^{-1})/T)`` as a function of complex ``z``."""
-    d = _delay(delay_samples)
+    d = integer("delay_samples", delay_samples, 0)
 
     def H(z: np.ndarray) -> np.ndarray:
         return z ** (-d) * (stiffness + damping * (1.0 - 1.0 / z) / sample_time)
@@ -90,7 +82,7 @@ def required_damping(H: Callable[[np.ndarray], np.ndarray], sample_time: float, 
     Returns ``(b_required, w)``: the supremum over ``0 < w <= pi/T`` of the right-hand side
     and the frequency (rad/s) where it is attained (dense grid plus Brent refinement).
     """
-    T = _pos("sample_time", sample_time)
+    T = _POS("sample_time", sample_time)
 
     def rhs(th: np.ndarray) -> np.ndarray:
         z = np.exp(1j * th)
@@ -123,14 +115,11 @@ def passivity_limit(mass: float, damping: float, sample_time: float, virtual_dam
     grid and refined.  ``mass`` is validated but does not enter (the criterion is independent of
     it).  Returns NaN when no K >= 0 is passive (e.g. ``|B| >= b`` without delay).
     """
-    _pos("mass", mass)
-    b = _pos("damping", damping, strict=False)
-    T = _pos("sample_time", sample_time)
-    if isinstance(virtual_damping, bool) or not isinstance(virtual_damping, (int, float, np.integer, np.floating)) \
-            or not math.isfinite(float(virtual_damping)):
-        raise ValidationError("virtual_damping", "a finite real number (N s/m)", virtual_damping)
-    B = float(virtual_damping)
-    d = _delay(delay_samples)
+    _POS("mass", mass)
+    b = _NONNEG("damping", damping)
+    T = _POS("sample_time", sample_time)
+    B = _VIRTUAL_DAMPING("virtual_damping", virtual_damping)
+    d = integer("delay_samples", delay_samples, 0)
 
     def parts(th):
         a = 0.5 * T * np.sin((d + 0.5) * th) / np.sin(0.5 * th)
@@ -158,7 +147,7 @@ def passivity_limit(mass: float, damping: float, sample_time: float, virtual_dam
 def passivity_closed_form(damping: float, sample_time: float, virtual_damping: float = 0.0,
                           delay_samples: int = 0) -> float:
     """Closed forms of the Colgate-Schenkel limit: ``2(b - |B|)/T`` (d = 0), ``b/(T(d + 1/2))`` (B = 0)."""
-    d = _delay(delay_samples)
+    d = integer("delay_samples", delay_samples, 0)
     if d == 0:
         k = 2.0 * (damping - abs(virtual_damping)) / sample_time
         return k if k >= 0 else math.nan
@@ -171,7 +160,7 @@ def passivity_closed_form(damping: float, sample_time: float, virtual_damping: f
 def linear_stability_limit(damping: float, sample_time: float, virtual_damping: float = 0.0,
                            delay_samples: int = 0) -> float:
     """``K_max ~ (b + B) / (T (d + 1/2))`` (Gil et al. 2004 for d = 0; Hulin et al. 2006 with delay)."""
-    d = _delay(delay_samples)
+    d = integer("delay_samples", delay_samples, 0)
     return (damping + virtual_damping) / (sample_time * (d + 0.5))
 
 
@@ -183,7 +172,7 @@ def rigid_stability_polynomial(mass: float, damping: float, sample_time: float, 
     transfer function ``(alpha z + beta)/((z-1)(z-delta))`` of ``1/(s (m s + b))``.
     """
     m, b, T = float(mass), float(damping), float(sample_time)
-    K, B, d = float(stiffness), float(virtual_damping), _delay(delay_samples)
+    K, B, d = float(stiffness), float(virtual_damping), integer("delay_samples", delay_samples, 0)
     if b > 0:
         delta = math.exp(-b * T / m)
         one_minus = -math.expm1(-b * T / m)

@@ -1,12 +1,19 @@
 """Simulation options and scenarios (frozen, validated, with ``to_dict``/``from_dict`` for profiles).
 
+Both are settings records of :mod:`analysis.checks` (validators, ``record_to_dict`` and
+``record_from_dict``); this module is light (no loop or simulator code).
+
 Scenario presets (:data:`SCENARIOS`) follow Adams et al., section VI:
 
 * ``impedance_worst_case``: the human pushes the handle into a rigid wall with a firm grasp,
   then lets go (grasp and force removed at ``release_time``) -- the worst case the paper used to
   tune the impedance display (rigid constraint, the operator releases the handle).
+
+
 * ``admittance_worst_case``: free motion with a rigid grasp and a short push -- the paper's worst
   case for the admittance display.
+
+
 * ``wall_push``: a force step pushing the handle into a wall and holding it there.
 * ``free_sliding``: a push along free space, then coasting.
 """
@@ -14,66 +21,43 @@ Scenario presets (:data:`SCENARIOS`) follow Adams et al., section VI:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 
-import numpy as np
-
+from analysis.checks import Real, SettingsRecord, boolean, check_elements, choice, integer, string
 from analysis.errors import ValidationError
-from analysis.sampled.terminations import FIRM_GRASP, PAPER_OBJECT_MASS, PAPER_WALL_STIFFNESS, RIGID_GRASP, Grasp
+from analysis.sampled.terminations import (
+    CAUSALITIES,
+    FIRM_GRASP,
+    PAPER_OBJECT_MASS,
+    PAPER_WALL_STIFFNESS,
+    RIGID_GRASP,
+    Grasp,
+)
 
 __all__ = ["SimulationOptions", "Scenario", "SCENARIOS", "hbfd_options", "scenario"]
 
-
-def _num(name: str, value: object, *, positive: bool = False, allow_inf: bool = False,
-         allow_negative: bool = False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ValidationError(name, "a real number", value)
-    x = float(value)
-    if math.isnan(x) or (math.isinf(x) and not allow_inf):
-        raise ValidationError(name, "a finite number" if not allow_inf else "a number", value)
-    if not allow_negative and (x < 0 or (positive and x == 0)):
-        raise ValidationError(name, "> 0" if positive else ">= 0", value)
-    return x
+# The number rules of options and scenarios (their errors say "a real number", "a finite number",
+# "> 0", ">= 0"; see analysis.checks.Real).
+_ANY = Real(not_real="a real number", not_finite="a finite number")
+_NONNEG = Real(lo=0.0, allowed=">= 0", not_real="a real number", not_finite="a finite number")
+_POS = Real(lo=0.0, lo_open=True, allowed="> 0", not_real="a real number", not_finite="a finite number")
+_NONNEG_OR_INF = Real(lo=0.0, allow_inf=True, allowed=">= 0", not_real="a real number", not_finite="a number")
+_POS_OR_INF = Real(lo=0.0, lo_open=True, allow_inf=True, allowed="> 0", not_real="a real number",
+                   not_finite="a number")
 
 
-def _int(name: str, value: object, lo: int, hi: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not (lo <= value <= hi):
-        raise ValidationError(name, f"an integer in [{lo}, {hi}]", value)
-    return int(value)
-
-
-def _bool(name: str, value: object) -> bool:
-    if not isinstance(value, (bool, np.bool_)):
-        raise ValidationError(name, "true or false", value)
-    return bool(value)
-
-
-def _json_float(x: float) -> float | str:
-    return x if math.isfinite(x) else ("inf" if x > 0 else "-inf")
-
-
-def _from_json_float(x: object) -> object:
-    return {"inf": math.inf, "-inf": -math.inf}.get(x, x) if isinstance(x, str) else x
-
-
-def _check_keys(cls_name: str, data: object, allowed: set[str]) -> dict:
-    if not isinstance(data, dict):
-        raise ValidationError(cls_name, "an object (JSON dictionary)", data)
-    unknown = sorted(set(data) - allowed)
-    if unknown:
-        raise ValidationError(unknown[0], f"one of the {cls_name} keys {sorted(allowed)}", data[unknown[0]])
-    return data
+_FRICTION = Real(lo=0.0, unit="N")  # ">= 0 and finite (N)", per element
 
 
 @dataclass(frozen=True)
-class SimulationOptions:
+class SimulationOptions(SettingsRecord):
     """Nonlinear effects and numerics of the simulator (all off by default).
 
     ``encoder_resolution`` (m; the HBFD 0.015 mm) and ``force_resolution`` (N; 0.05 N) quantize
     the sensors (encoder truncation toward minus infinity, gauge rounding), 0 = off.
     ``friction`` is the Coulomb force (N) on each mass (empty = none), regularized as saturated
     viscous friction ``-sat(v F_c / stick_velocity, F_c)`` (Karnopp-style stick band) and
-    integrated exactly between events (see :mod:`analysis.simulator`).
+    integrated exactly between events (see :mod:`analysis.sampled.simulator`).
     Actuator saturation: ``force_peak`` (N) is an instantaneous clip; ``force_continuous`` (N)
     is enforced by an I^2 t (thermal) model -- the RMS of the applied force over the
     ``thermal_time_constant`` (first-order average of F^2) may not exceed it; while it does, the
@@ -82,6 +66,8 @@ class SimulationOptions:
     delay between coupling and environment (explicit integration).  ``substeps`` sub-divide the
     sample for the friction forces (unused without friction: the step is then exact).
     """
+
+    record_name = "simulation options"
 
     substeps: int = 2
     encoder_resolution: float = 0.0
@@ -95,43 +81,26 @@ class SimulationOptions:
     implementation_delay: bool = False
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "substeps", _int("substeps", self.substeps, 1, 4096))
-        object.__setattr__(self, "encoder_resolution", _num("encoder_resolution", self.encoder_resolution))
-        object.__setattr__(self, "force_resolution", _num("force_resolution", self.force_resolution))
+        s = object.__setattr__
+        s(self, "substeps", integer("substeps", self.substeps, 1, 4096))
+        s(self, "encoder_resolution", _NONNEG("encoder_resolution", self.encoder_resolution))
+        s(self, "force_resolution", _NONNEG("force_resolution", self.force_resolution))
         try:
             fr = tuple(self.friction)
         except TypeError as exc:
             raise ValidationError("friction", "a list of Coulomb forces (N), one per mass", self.friction) from exc
-        for i, x in enumerate(fr):
-            try:
-                _num("friction", x)
-            except ValidationError as exc:
-                raise ValidationError("friction", ">= 0 and finite (N)", x, i) from exc
-        object.__setattr__(self, "friction", tuple(float(x) for x in fr))
-        object.__setattr__(self, "stick_velocity", _num("stick_velocity", self.stick_velocity, positive=True))
-        fc = _num("force_continuous", self.force_continuous, positive=True, allow_inf=True)
-        fp = _num("force_peak", self.force_peak, positive=True, allow_inf=True)
+        check_elements("friction", fr, _FRICTION)
+        s(self, "friction", tuple(float(x) for x in fr))
+        s(self, "stick_velocity", _POS("stick_velocity", self.stick_velocity))
+        fc = _POS_OR_INF("force_continuous", self.force_continuous)
+        fp = _POS_OR_INF("force_peak", self.force_peak)
         if fp < fc:
             raise ValidationError("force_peak", f">= force_continuous = {fc}", fp)
-        object.__setattr__(self, "force_continuous", fc)
-        object.__setattr__(self, "force_peak", fp)
-        object.__setattr__(self, "thermal_time_constant",
-                           _num("thermal_time_constant", self.thermal_time_constant, positive=True))
-        object.__setattr__(self, "delay_samples", _int("delay_samples", self.delay_samples, 0, 1000))
-        object.__setattr__(self, "implementation_delay", _bool("implementation_delay", self.implementation_delay))
-
-    def to_dict(self) -> dict:
-        out: dict = {}
-        for f in fields(self):
-            v = getattr(self, f.name)
-            out[f.name] = list(v) if isinstance(v, tuple) else (_json_float(v) if isinstance(v, float) else v)
-        return out
-
-    @classmethod
-    def from_dict(cls, data: object) -> SimulationOptions:
-        d = _check_keys("simulation options", data, {f.name for f in fields(cls)})
-        return cls(**{k: _from_json_float(v) for k, v in d.items()})
-
+        s(self, "force_continuous", fc)
+        s(self, "force_peak", fp)
+        s(self, "thermal_time_constant", _POS("thermal_time_constant", self.thermal_time_constant))
+        s(self, "delay_samples", integer("delay_samples", self.delay_samples, 0, 1000))
+        s(self, "implementation_delay", boolean("implementation_delay", self.implementation_delay))
 
 def hbfd_options(**changes) -> SimulationOptions:
     """The HBFD's nonlinear effects (section V): 0.015 mm encoder, 0.05 N gauge, 100 N / 400 N.
@@ -145,11 +114,8 @@ def hbfd_options(**changes) -> SimulationOptions:
     return SimulationOptions(**base)
 
 
-_CAUS = ("impedance", "admittance")
-
-
 @dataclass(frozen=True)
-class Scenario:
+class Scenario(SettingsRecord):
     """What the human and the virtual world do in a simulation.
 
     Environment: ``causality`` (``"impedance"`` penalty or ``"admittance"`` god-object); when
@@ -161,6 +127,8 @@ class Scenario:
     Initial state: every mass at ``initial_position`` with ``initial_velocity``, at rest
     otherwise.  ``duration`` in s.
     """
+
+    record_name = "scenario"
 
     name: str = "custom"
     causality: str = "impedance"
@@ -179,58 +147,30 @@ class Scenario:
     duration: float = 2.0
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str):
-            raise ValidationError("name", "a string", self.name)
-        if self.causality not in _CAUS:
-            raise ValidationError("causality", "impedance or admittance", self.causality)
-        object.__setattr__(self, "wall", _bool("wall", self.wall))
-        object.__setattr__(self, "wall_position", _num("wall_position", self.wall_position, allow_negative=True))
-        object.__setattr__(self, "wall_stiffness", _num("wall_stiffness", self.wall_stiffness))
-        object.__setattr__(self, "wall_damping", _num("wall_damping", self.wall_damping))
-        object.__setattr__(self, "object_mass", _num("object_mass", self.object_mass, positive=True))
+        s = object.__setattr__
+        string("name", self.name)
+        choice("causality", self.causality, CAUSALITIES, allowed="impedance or admittance")
+        s(self, "wall", boolean("wall", self.wall))
+        s(self, "wall_position", _ANY("wall_position", self.wall_position))
+        s(self, "wall_stiffness", _NONNEG("wall_stiffness", self.wall_stiffness))
+        s(self, "wall_damping", _NONNEG("wall_damping", self.wall_damping))
+        s(self, "object_mass", _POS("object_mass", self.object_mass))
         if isinstance(self.grasp, dict):
-            object.__setattr__(self, "grasp", Grasp.from_dict(self.grasp))
+            s(self, "grasp", Grasp.from_dict(self.grasp))
         if not isinstance(self.grasp, Grasp):
             raise ValidationError("grasp", "a Grasp (mass, damping, stiffness)", self.grasp)
-        object.__setattr__(self, "release_time", _num("release_time", self.release_time, allow_inf=True))
-        object.__setattr__(self, "push_force", _num("push_force", self.push_force, allow_negative=True))
-        object.__setattr__(self, "push_start", _num("push_start", self.push_start))
-        object.__setattr__(self, "push_end", _num("push_end", self.push_end, allow_inf=True))
+        s(self, "release_time", _NONNEG_OR_INF("release_time", self.release_time))
+        s(self, "push_force", _ANY("push_force", self.push_force))
+        s(self, "push_start", _NONNEG("push_start", self.push_start))
+        s(self, "push_end", _NONNEG_OR_INF("push_end", self.push_end))
         if self.push_end < self.push_start:
             raise ValidationError("push_end", f">= push_start = {self.push_start}", self.push_end)
-        object.__setattr__(self, "initial_position",
-                           _num("initial_position", self.initial_position, allow_negative=True))
-        object.__setattr__(self, "initial_velocity",
-                           _num("initial_velocity", self.initial_velocity, allow_negative=True))
-        d = _num("duration", self.duration, positive=True)
+        s(self, "initial_position", _ANY("initial_position", self.initial_position))
+        s(self, "initial_velocity", _ANY("initial_velocity", self.initial_velocity))
+        d = _POS("duration", self.duration)
         if d > 3600:
             raise ValidationError("duration", "(0, 3600] s", d)
-        object.__setattr__(self, "duration", d)
-
-    def replace(self, **changes) -> Scenario:
-        data = {f.name: getattr(self, f.name) for f in fields(self)}
-        data.update(changes)
-        return Scenario(**data)
-
-    def to_dict(self) -> dict:
-        out: dict = {}
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if isinstance(v, Grasp):
-                v = v.to_dict()
-            elif isinstance(v, float):
-                v = _json_float(v)
-            out[f.name] = v
-        return out
-
-    @classmethod
-    def from_dict(cls, data: object) -> Scenario:
-        d = _check_keys("scenario", data, {f.name for f in fields(cls)})
-        d = {k: _from_json_float(v) for k, v in d.items()}
-        if "grasp" in d:
-            d["grasp"] = Grasp.from_dict(d["grasp"])
-        return cls(**d)
-
+        s(self, "duration", d)
 
 SCENARIOS: dict[str, Scenario] = {
     "impedance_worst_case": Scenario(
@@ -251,6 +191,5 @@ SCENARIOS: dict[str, Scenario] = {
 
 def scenario(name: str, **changes) -> Scenario:
     """A preset from :data:`SCENARIOS`, optionally modified (e.g. ``causality="admittance"``)."""
-    if name not in SCENARIOS:
-        raise ValidationError("scenario", ", ".join(SCENARIOS), name)
+    choice("scenario", name, SCENARIOS, allowed=", ".join(SCENARIOS))
     return SCENARIOS[name].replace(**changes) if changes else SCENARIOS[name]

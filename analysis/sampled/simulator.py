@@ -1,8 +1,8 @@
 """Nonlinear time-domain simulator of the sampled haptic loop.
 
-The controller is the same step function as the linear analysis
-(:func:`analysis.sampled_loop.controller_step`), called with floats and a unilateral wall
-(contact only while the solution penetrates).  Sensors are sampled and optionally quantized;
+The controller is the same step as the linear analysis (the display loop objects of
+:mod:`analysis.sampled.controllers`), called with floats and a unilateral wall (contact only
+while the solution penetrates).  Sensors are sampled and optionally quantized;
 the actuator force is held (ZOH), optionally delayed and saturated.
 
 Continuous part
@@ -16,7 +16,12 @@ regime during it, the sub-step is split in halves recursively (dyadic event loca
 ``h / 2^10``) so the regime switch happens at the right time.  The result is therefore
 independent of ``substeps`` up to the event resolution (the tests check that halving the
 sub-step changes it by less than 1e-6 relative).  Without friction the whole sample is one
-exact step.
+exact step.  With friction a run stops at divergence (``|x_1| > 1e6`` m or not finite) and the
+signals after it are NaN.
+
+Each sample: the human's grasp and push (:meth:`Simulator.hand`), the sensors
+(:meth:`Simulator.sample`), the controller step, the actuator (delay, peak clip and I^2 t
+fold-back), the record with the energy integrals, then the exact propagation to the next sample.
 
 Verdict (``detect``)
 --------------------
@@ -34,11 +39,14 @@ import math
 import numpy as np
 
 from analysis.chain.device import Device
+from analysis.chain.discretize import discretize_zoh
+from analysis.checks import positive
 from analysis.errors import ValidationError
-from analysis.sampled.loop import LoopSpec, controller_params, controller_step, memory_names, plant_matrices, sensor_rows
+from analysis.sampled.controllers import display_loop
+from analysis.sampled.loop import LoopSpec, controller_params, plant_matrices, sensor_rows
 from analysis.sampled.results import SimulationResult, Verdict
 from analysis.sampled.scenarios import Scenario, SimulationOptions
-from analysis.sampled.terminations import HANDS_OFF, Environment, Grasp
+from analysis.sampled.terminations import HANDS_OFF, Environment, Grasp, causality_kind
 
 __all__ = ["Simulator", "simulate", "detect"]
 
@@ -46,7 +54,8 @@ _LEVELS = 10  # dyadic event resolution: sub-step / 2**10
 _FAR = 1e30  # wall position meaning "no wall"
 
 
-def _sim_engaged(pen, flag):
+def _sim_engaged(pen: float, flag: bool) -> bool:
+    """Simulation: the wall is a one-sided contact, engaged while penetrated."""
     return pen > 0.0
 
 
@@ -73,8 +82,6 @@ class _Propagators:
         return P
 
     def _build(self, regime: tuple[int, ...]) -> np.ndarray:
-        from scipy import linalg
-
         n, n2 = self.n, 2 * self.n
         extra = np.zeros(n)
         const = np.zeros(n)
@@ -91,11 +98,8 @@ class _Propagators:
         B3[:, :2] = Bu
         B3[n:, 2] = const / masses
         hs = self.h / 2.0 ** np.arange(self.levels + 1)
-        aug = np.zeros((hs.size, n2 + 3, n2 + 3))
-        aug[:, :n2, :n2] = A[None] * hs[:, None, None]
-        aug[:, :n2, n2:] = B3[None] * hs[:, None, None]
-        E = linalg.expm(aug)
-        return np.ascontiguousarray(E[:, :n2, :])  # (levels+1, 2n, 2n+3)
+        Phi, Gam = discretize_zoh(A, B3, hs)
+        return np.concatenate([Phi, Gam], axis=-1)  # (levels+1, 2n, 2n+3)
 
     def regime(self, z: np.ndarray) -> tuple[int, ...]:
         vs = self.v_stick
@@ -107,6 +111,117 @@ class _Propagators:
         if fc == 0:
             return 0.0
         return -min(max(float(z[self.n]) * fc / self.v_stick, -fc), fc)
+
+    def hand_force(self, z: np.ndarray, push: float) -> float:
+        """Force of the hand on the handle: the push less the grasp's spring, damper and mass."""
+        n, g = self.n, self.grasp
+        fr0 = self.friction_force0(z)
+        a0 = float(self.A[n] @ z[:2 * n] + self.Bu[n] @ z[2 * n:2 * n + 2]) + fr0 / self.m0
+        return push - g.stiffness * z[0] - g.damping * z[n] - g.mass * a0
+
+    def advance(self, z: np.ndarray, substeps: int) -> int:
+        """Propagate ``z`` over one sample, in place; returns the number of dyadic splits.
+
+        Without friction one exact step; with it ``substeps`` sub-steps, each split in halves
+        while a mass changes regime (see the module docstring).
+        """
+        n2 = 2 * self.n
+        if not self.idx:
+            z[:n2] = self.get(())[0] @ z
+            return 0
+        N = 1 << self.levels
+        regime, cache = self.regime, self.cache
+        events = 0
+        for _ in range(substeps):
+            tick = 0
+            r = regime(z)
+            while tick < N:
+                size = N if tick == 0 else min(tick & -tick, N - tick)
+                Ps = cache.get(r)
+                if Ps is None:
+                    Ps = self.get(r)
+                while True:
+                    znew = Ps[_LEVELS + 1 - size.bit_length()] @ z
+                    rn = regime(znew)
+                    if size == 1 or rn == r:
+                        break
+                    size >>= 1
+                    events += 1
+                z[:n2] = znew
+                r = rn
+                tick += size
+        return events
+
+
+class _Actuator:
+    """The force path after the controller: computation delay, peak clip and I^2 t fold-back."""
+
+    def __init__(self, options: SimulationOptions, T: float, delay_samples: int) -> None:
+        self.delay = delay_samples
+        self.buffer = [0.0] * delay_samples
+        self.peak, self.continuous = options.force_peak, options.force_continuous
+        self.thermal = self.continuous < math.inf
+        self.alpha = T / options.thermal_time_constant
+        self.mean_square = 0.0
+
+    def apply(self, u: float) -> float:
+        """The force applied for the controller output ``u`` (state: delay line, thermal model)."""
+        if self.delay:
+            self.buffer.append(u)
+            u = self.buffer.pop(0)
+        fpk, fcont = self.peak, self.continuous
+        if u > fpk:
+            u = fpk
+        elif u < -fpk:
+            u = -fpk
+        if self.thermal and self.mean_square > fcont * fcont:
+            u = min(max(u, -fcont), fcont)
+        self.mean_square += self.alpha * (u * u - self.mean_square)
+        return u
+
+
+class _Trace:
+    """The signals of one run, sample by sample, and their energy integrals."""
+
+    def __init__(self, size: int, n: int) -> None:
+        self.size, self.n = size, n
+        self.pos, self.vel = np.empty((size, n)), np.empty((size, n))
+        self.enc, self.fm, self.fh, self.fd, self.fe, self.xe = (np.empty(size) for _ in range(6))
+        self.contact = np.zeros(size, dtype=bool)
+        self.energy, self.energy_obs, self.energy_h = np.zeros(size), np.zeros(size), np.zeros(size)
+        self.sums = (0.0, 0.0, 0.0)
+        self.prev: tuple | None = None
+
+    def record(self, k: int, z: np.ndarray, y: float, f: float, u: float, fe: float, xe: float,
+               contact: bool, fh: float) -> None:
+        """Sample ``k``; the energies integrate ``F_d dx_n``, ``F_d dy`` and ``F_h dx_1`` (trapezoid)."""
+        n = self.n
+        self.pos[k] = z[:n]
+        self.vel[k] = z[n:2 * n]
+        self.enc[k], self.fm[k], self.fd[k], self.fe[k], self.xe[k] = y, f, u, fe, xe
+        self.contact[k] = contact
+        self.fh[k] = fh
+        if self.prev is not None:
+            xn_prev, y_prev, x1_prev, fh_prev, u_prev = self.prev
+            e, eo, eh = self.sums
+            e += u_prev * (z[n - 1] - xn_prev)
+            eo += u_prev * (y - y_prev)
+            eh += 0.5 * (fh_prev + self.fh[k]) * (z[0] - x1_prev)
+            self.sums = (e, eo, eh)
+            self.energy[k], self.energy_obs[k], self.energy_h[k] = e, eo, eh
+        self.prev = (z[n - 1], y, z[0], self.fh[k], u)
+
+    def diverged(self, k: int) -> None:
+        """Blank every signal after sample ``k``."""
+        for arr in (self.pos, self.vel, self.enc, self.fm, self.fh, self.fd, self.fe, self.xe, self.energy,
+                    self.energy_obs, self.energy_h):
+            arr[k + 1:] = np.nan
+
+    def result(self, t: np.ndarray, verdict: Verdict, substeps: int, events: int) -> SimulationResult:
+        return SimulationResult(t=t, positions=self.pos, velocities=self.vel, encoder=self.enc, f_meas=self.fm,
+                                f_h=self.fh, f_d=self.fd, f_e=self.fe, x_e=self.xe, energy=self.energy,
+                                energy_observed=self.energy_obs, energy_human=self.energy_h,
+                                contact=self.contact, verdict=verdict, substeps=substeps, events=events)
 
 
 class Simulator:
@@ -131,145 +246,77 @@ class Simulator:
         self.props = {g: _Propagators(device, g, fr, opt.stick_velocity, h, levels)
                       for g in {scenario.grasp, HANDS_OFF}}
         sc = scenario
+        self.loop, self.kind = spec.loop, causality_kind(sc.causality)
         self.env = Environment(sc.causality, stiffness=sc.wall_stiffness if sc.wall else 0.0,
                                damping=sc.wall_damping if sc.wall else 0.0, mass=sc.object_mass,
-                               wall=sc.wall and sc.causality == "admittance")
+                               wall=self.kind.constrains(sc.wall))
         self.params = controller_params(spec, T, [self.env], sc.wall_position if sc.wall else _FAR, batch=False)
+        self.names = self.loop.memory_names(self.kind, spec.implementation_delay)
         self.cy, self.cf = sensor_rows(device)
 
     def run(self, duration: float | None = None) -> SimulationResult:
-        dev, spec, sc, opt = self.device, self.spec, self.scenario, self.options
-        T = dev.sample_time
-        D = sc.duration if duration is None else float(duration)
-        if not (math.isfinite(D) and D > 0):
-            raise ValidationError("duration", "> 0 and finite (s)", duration)
-        K = int(round(D / T)) + 1
-        n, n2 = dev.n, 2 * dev.n
-        display, caus = spec.display, sc.causality
-        p = self.params
-        names = memory_names(display, caus, spec.implementation_delay)
-        z = np.zeros(n2 + 3)
-        z[:n] = sc.initial_position
-        z[n:n2] = sc.initial_velocity
-        z[n2 + 2] = 1.0
-        # controller memory consistent with rest at the initial position
-        mem = {nm: 0.0 for nm in names}
-        x0 = sc.initial_position
-        if display == "impedance":
-            mem["xe"] = x0 if not (sc.wall and x0 > p.xw) else p.xw
-            mem["delta"] = x0 - mem["xe"]
-        else:
-            mem["yp"], mem["xc"] = x0, x0
-            if "ve" in mem:
-                mem["ve"] = 0.0
-        res_x, res_f = opt.encoder_resolution, opt.force_resolution
-        fpk, fcont = opt.force_peak, opt.force_continuous
-        thermal = fcont < math.inf
-        alpha = T / opt.thermal_time_constant
-        msq = 0.0
-        d = spec.delay_samples
-        buf = [0.0] * d
-        cy, cf = self.cy, self.cf
+        """Simulate ``duration`` s (default the scenario's) and classify the run (:func:`detect`)."""
+        sc, T = self.scenario, self.device.sample_time
+        D = sc.duration if duration is None else positive("duration", duration, "s")
+        trace = _Trace(int(round(D / T)) + 1, self.device.n)
+        mem = self.loop.rest_memory(self.names, sc.initial_position, sc.wall, self.params.xw)
+        events = self._steps(self.initial_state(), mem, trace)
+        t = np.arange(trace.size) * T
+        verdict = detect(t, trace.pos[:, -1], self.options.encoder_resolution)
+        return trace.result(t, verdict, self.substeps, events)
 
-        t = np.arange(K) * T
-        pos = np.empty((K, n))
-        vel = np.empty((K, n))
-        enc = np.empty(K)
-        fm = np.empty(K)
-        fh = np.empty(K)
-        fd = np.empty(K)
-        fe_out = np.empty(K)
-        xe_out = np.empty(K)
-        contact = np.zeros(K, dtype=bool)
-        energy = np.zeros(K)
-        energy_obs = np.zeros(K)
-        energy_h = np.zeros(K)
+    def initial_state(self) -> np.ndarray:
+        """``(X, F_d, F_ext, 1)`` with every mass at the scenario's initial position and velocity."""
+        n, sc = self.device.n, self.scenario
+        z = np.zeros(2 * n + 3)
+        z[:n] = sc.initial_position
+        z[n:2 * n] = sc.initial_velocity
+        z[2 * n + 2] = 1.0
+        return z
+
+    def hand(self, tk: float) -> tuple[Grasp, float]:
+        """The human's grasp and push force at time ``tk`` (see :class:`Scenario`)."""
+        sc = self.scenario
+        released = tk >= sc.release_time
+        grasp = HANDS_OFF if released else sc.grasp
+        push = sc.push_force if (sc.push_start <= tk < sc.push_end and not released) else 0.0
+        return grasp, push
+
+    def sample(self, z: np.ndarray) -> tuple[float, float]:
+        """Encoder and force gauge at state ``z``, quantized as the options say."""
+        X = z[:2 * self.device.n]
+        res_x, res_f = self.options.encoder_resolution, self.options.force_resolution
+        y = float(self.cy @ X)
+        if res_x > 0:
+            y = math.floor(y / res_x) * res_x
+        f = float(self.cf @ X)
+        if res_f > 0:
+            f = round(f / res_f) * res_f
+        return y, f
+
+    def _steps(self, z: np.ndarray, mem: dict, trace: _Trace) -> int:
+        """The run, sample after sample (module docstring); returns the number of dyadic splits."""
+        sc, p, n2 = self.scenario, self.params, 2 * self.device.n
+        T, last, sub = self.device.sample_time, trace.size - 1, self.substeps
+        step, touches = self.loop.step_for(self.kind), self.kind.contact
+        actuate = _Actuator(self.options, T, self.spec.delay_samples).apply
         events = 0
-        sub = self.substeps
-        N = 1 << (self.props[sc.grasp].levels)
-        e_acc = eo_acc = eh_acc = 0.0
-        prev = None
-        for k in range(K):
-            tk = k * T
-            released = tk >= sc.release_time
-            grasp = HANDS_OFF if released else sc.grasp
+        for k in range(trace.size):
+            grasp, push = self.hand(k * T)
             pr = self.props[grasp]
-            push = sc.push_force if (sc.push_start <= tk < sc.push_end and not released) else 0.0
-            X = z[:n2]
-            y = float(cy @ X)
-            if res_x > 0:
-                y = math.floor(y / res_x) * res_x
-            f = float(cf @ X)
-            if res_f > 0:
-                f = round(f / res_f) * res_f
-            u, mem, fe, xe = controller_step(display, caus, p, y, f, mem, _sim_engaged)
-            if d:
-                buf.append(u)
-                u = buf.pop(0)
-            if u > fpk:
-                u = fpk
-            elif u < -fpk:
-                u = -fpk
-            if thermal and msq > fcont * fcont:
-                u = min(max(u, -fcont), fcont)
-            msq += alpha * (u * u - msq)
+            y, f = self.sample(z)
+            u, mem, fe, xe = step(p, y, f, mem, _sim_engaged)
+            u = actuate(u)
             z[n2] = u
             z[n2 + 1] = push
-            # record at the sample
-            pos[k] = z[:n]
-            vel[k] = z[n:n2]
-            enc[k] = y
-            fm[k] = f
-            fd[k] = u
-            fe_out[k] = fe
-            xe_out[k] = xe
-            contact[k] = sc.wall and (xe >= p.xw if caus == "admittance" else xe > p.xw)
-            g = grasp
-            fr0 = pr.friction_force0(z)
-            a0 = float(pr.A[n] @ z[:n2] + pr.Bu[n] @ z[n2:n2 + 2]) + fr0 / pr.m0
-            fh[k] = push - g.stiffness * z[0] - g.damping * z[n] - g.mass * a0
-            if prev is not None:
-                xn_prev, y_prev, x1_prev, fh_prev, u_prev = prev
-                e_acc += u_prev * (z[n - 1] - xn_prev)
-                eo_acc += u_prev * (y - y_prev)
-                eh_acc += 0.5 * (fh_prev + fh[k]) * (z[0] - x1_prev)
-                energy[k], energy_obs[k], energy_h[k] = e_acc, eo_acc, eh_acc
-            prev = (z[n - 1], y, z[0], fh[k], u)
-            if k == K - 1:
+            trace.record(k, z, y, f, u, fe, xe, sc.wall and touches(xe, p.xw), pr.hand_force(z, push))
+            if k == last:
                 break
-            if not pr.idx:
-                P = pr.get(())[0]
-                z[:n2] = P @ z
-                continue
-            regime, cache = pr.regime, pr.cache
-            for _ in range(sub):
-                tick = 0
-                r = regime(z)
-                while tick < N:
-                    size = N if tick == 0 else min(tick & -tick, N - tick)
-                    Ps = cache.get(r)
-                    if Ps is None:
-                        Ps = pr.get(r)
-                    while True:
-                        znew = Ps[_LEVELS + 1 - size.bit_length()] @ z
-                        rn = regime(znew)
-                        if size == 1 or rn == r:
-                            break
-                        size >>= 1
-                        events += 1
-                    z[:n2] = znew
-                    r = rn
-                    tick += size
-            if not np.isfinite(z[0]) or abs(z[0]) > 1e6:
-                pos[k + 1:] = np.nan
-                vel[k + 1:] = np.nan
-                for arr in (enc, fm, fh, fd, fe_out, xe_out, energy, energy_obs, energy_h):
-                    arr[k + 1:] = np.nan
+            events += pr.advance(z, sub)
+            if pr.idx and (not np.isfinite(z[0]) or abs(z[0]) > 1e6):
+                trace.diverged(k)
                 break
-        verdict = detect(t, pos[:, -1], opt.encoder_resolution)
-        return SimulationResult(t=t, positions=pos, velocities=vel, encoder=enc, f_meas=fm, f_h=fh, f_d=fd, f_e=fe_out,
-                                x_e=xe_out, energy=energy, energy_observed=energy_obs, energy_human=energy_h,
-                                contact=contact, verdict=verdict, substeps=self.substeps, events=events)
+        return events
 
 
 def detect(t: np.ndarray, x: np.ndarray, encoder_resolution: float = 0.0) -> Verdict:
@@ -316,18 +363,18 @@ def simulate(profile_or_device, scenario: Scenario | str, duration: float | None
     opt = options or SimulationOptions()
     if isinstance(profile_or_device, Device):
         dev = profile_or_device
-        disp = display or "impedance"
+        loop = display_loop(display or "impedance")
         if coupling is None:
-            coupling = (50e3, 100.0) if disp == "impedance" else (8.0, 400.0)
+            coupling = loop.default_coupling
         pd = pd or (50e3, 100.0)
     elif hasattr(profile_or_device, "device"):
         prof = profile_or_device
         dev = prof.device
-        disp = display or prof.display
+        loop = display_loop(display or prof.display)
         if coupling is None:
-            coupling = (prof.kc, prof.bc) if disp == "impedance" else (prof.mc, prof.bc_adm)
+            coupling = loop.profile_coupling(prof)
         pd = pd or (prof.kp, prof.kd)
     else:
         raise ValidationError("profile_or_device", "a Profile or a Device", type(profile_or_device).__name__)
-    spec = LoopSpec(disp, coupling, pd, opt.delay_samples, opt.implementation_delay)
+    spec = LoopSpec(loop.name, coupling, pd, opt.delay_samples, opt.implementation_delay)
     return Simulator(dev, spec, sc, opt).run(duration)

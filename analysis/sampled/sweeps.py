@@ -19,15 +19,18 @@ picture.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
 from analysis.chain.device import Device
+from analysis.checks import nonnegative, positive
 from analysis.errors import ValidationError
+from analysis.sampled.controllers import display_loop
 from analysis.sampled.loop import LoopSpec, closed_loop_matrices, discretize_zoh, plant_matrices, spectral_radius
 from analysis.sampled.results import CriticalChart, CriticalMassChart, StabilityMap, WorstCase
 from analysis.sampled.terminations import (
+    CAUSALITIES,
     HANDS_OFF,
     RIGID_GRASP,
     Environment,
@@ -63,7 +66,7 @@ def radii(device: Device, spec: LoopSpec, terminations: Sequence[Termination],
     grasps: dict[Grasp, int] = {}
     gidx = np.array([grasps.setdefault(t.grasp, len(grasps)) for t in terms])
     plants = discretize_zoh(*plant_matrices(device, list(grasps)), device.sample_time)
-    for caus in ("impedance", "admittance"):
+    for caus in CAUSALITIES:  # one batch of closed-loop matrices per environment causality
         sel = np.array([i for i, t in enumerate(terms) if t.environment.causality == caus], dtype=int)
         if sel.size == 0:
             continue
@@ -127,8 +130,7 @@ def critical_stiffness(device: Device, bc: float, delay_samples: int = 0, *, env
     module docstring), ``inf`` if none below ``k_range[1]``, ``0.0`` if already unstable at
     ``k_range[0]``.
     """
-    if not (isinstance(bc, (int, float, np.floating, np.integer)) and math.isfinite(bc) and bc >= 0):
-        raise ValidationError("bc", ">= 0 and finite (N s/m)", bc)
+    nonnegative("bc", bc, "N s/m")
     env = god_object_wall() if environment is None else environment
     term = (Termination(grasp, env),)
 
@@ -140,11 +142,28 @@ def critical_stiffness(device: Device, bc: float, delay_samples: int = 0, *, env
     return _first_crossing(f, k_range[0], k_range[1], increasing=True)
 
 
-def critical_stiffness_chart(device: Device, bc_values, delay_samples: int = 0, **kwargs) -> CriticalChart:
-    """:func:`critical_stiffness` over a list of b_c (overlay for the two-port design chart)."""
+def _each(values: np.ndarray, func: Callable[[float], float], progress: Callable[[int, int], None] | None,
+          cancelled: Callable[[], bool] | None) -> np.ndarray | None:
+    """``func`` at each value, reporting ``progress(done, total)``; ``None`` once ``cancelled()``."""
+    out = np.empty(values.size)
+    for i, v in enumerate(values):
+        if cancelled is not None and cancelled():
+            return None
+        out[i] = func(float(v))
+        if progress is not None:
+            progress(i + 1, values.size)
+    return out
+
+
+def critical_stiffness_chart(device: Device, bc_values, delay_samples: int = 0, *,
+                             progress: Callable[[int, int], None] | None = None,
+                             cancelled: Callable[[], bool] | None = None, **kwargs) -> CriticalChart | None:
+    """:func:`critical_stiffness` over a list of b_c (overlay for the two-port design chart).
+
+    ``progress(done, total)`` after each b_c; ``None`` when ``cancelled()`` turns true."""
     bcs = np.asarray(bc_values, float).reshape(-1)
-    kcs = np.array([critical_stiffness(device, float(b), delay_samples, **kwargs) for b in bcs])
-    return CriticalChart(bc=bcs, kc=kcs, delay_samples=int(delay_samples))
+    kcs = _each(bcs, lambda b: critical_stiffness(device, b, delay_samples, **kwargs), progress, cancelled)
+    return None if kcs is None else CriticalChart(bc=bcs, kc=kcs, delay_samples=int(delay_samples))
 
 
 def critical_mass(device: Device, bc: float, pd: tuple[float, float] = (50e3, 100.0), delay_samples: int = 0, *,
@@ -157,8 +176,7 @@ def critical_mass(device: Device, bc: float, pd: tuple[float, float] = (50e3, 10
     Scans m_c downward from ``m_range[1]``; returns ``0.0`` if nothing down to ``m_range[0]`` is
     unstable and ``inf`` if ``m_range[1]`` already is.
     """
-    if not (isinstance(bc, (int, float, np.floating, np.integer)) and math.isfinite(bc) and bc > 0):
-        raise ValidationError("bc", "> 0 and finite (N s/m)", bc)
+    positive("bc", bc, "N s/m")
     env = free_motion("impedance") if environment is None else environment
     term = (Termination(grasp, env),)
 
@@ -170,11 +188,14 @@ def critical_mass(device: Device, bc: float, pd: tuple[float, float] = (50e3, 10
 
 
 def critical_mass_chart(device: Device, bc_values, pd: tuple[float, float] = (50e3, 100.0), delay_samples: int = 0,
-                        **kwargs) -> CriticalMassChart:
-    """:func:`critical_mass` over a list of b_c (overlay for the admittance design chart)."""
+                        *, progress: Callable[[int, int], None] | None = None,
+                        cancelled: Callable[[], bool] | None = None, **kwargs) -> CriticalMassChart | None:
+    """:func:`critical_mass` over a list of b_c (overlay for the admittance design chart).
+
+    ``progress(done, total)`` after each b_c; ``None`` when ``cancelled()`` turns true."""
     bcs = np.asarray(bc_values, float).reshape(-1)
-    mcs = np.array([critical_mass(device, float(b), pd, delay_samples, **kwargs) for b in bcs])
-    return CriticalMassChart(bc=bcs, mc=mcs, delay_samples=int(delay_samples))
+    mcs = _each(bcs, lambda b: critical_mass(device, b, pd, delay_samples, **kwargs), progress, cancelled)
+    return None if mcs is None else CriticalMassChart(bc=bcs, mc=mcs, delay_samples=int(delay_samples))
 
 
 #: Parameters a stability map can sweep, and where they act.
@@ -196,8 +217,6 @@ def stability_map(device: Device, x: tuple[str, Sequence[float]], y: tuple[str, 
     and ``termination`` (default: hands-off and the paper's penalty wall for an impedance
     display; rigid grasp and free motion for an admittance display).
     """
-    from analysis.sampled.terminations import penalty_wall
-
     (xn, xv), (yn, yv) = x, y
     for name in (xn, yn):
         if name not in MAP_PARAMETERS:
@@ -207,8 +226,7 @@ def stability_map(device: Device, x: tuple[str, Sequence[float]], y: tuple[str, 
     xv = np.asarray(xv, float).reshape(-1)
     yv = np.asarray(yv, float).reshape(-1)
     if termination is None:
-        termination = (Termination(HANDS_OFF, penalty_wall()) if display == "impedance"
-                       else Termination(RIGID_GRASP, free_motion("impedance")))
+        termination = display_loop(display).default_termination()
     spec = LoopSpec(display, coupling, pd, delay_samples, implementation_delay)
     X, Y = np.meshgrid(xv, yv)
     values = {xn: X.ravel(), yn: Y.ravel()}

@@ -33,9 +33,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from analysis.checks import Real, check_elements, nonnegative, positive
 from analysis.errors import ValidationError
 
 __all__ = ["FiveBar", "FIVE_BAR_PRESETS", "five_bar_preset"]
+
+
+_MASS = Real(lo=0.0, unit="kg")  # ">= 0 and finite (kg)", per link
 
 
 @dataclass(frozen=True)
@@ -57,20 +61,14 @@ class FiveBar:
 
     def __post_init__(self) -> None:
         for name in ("l1", "l2"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-                raise ValidationError(name, "> 0 and finite (m)", v)
+            positive(name, getattr(self, name), "m")
         for name in ("base", "handle_mass", "rotor_inertia", "joint_damping"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
-                raise ValidationError(name, ">= 0 and finite", v)
+            nonnegative(name, getattr(self, name))
         for name in ("proximal_masses", "distal_masses"):
             v = getattr(self, name)
             if len(v) != 2:
                 raise ValidationError(name, "two values (left, right)", v)
-            for i, x in enumerate(v):
-                if not (math.isfinite(x) and x >= 0):
-                    raise ValidationError(name, ">= 0 and finite (kg)", x, i)
+            check_elements(name, v, _MASS)
 
     def centre(self) -> np.ndarray:
         """Centre of the workspace: the midpoint of the reachable part of the symmetry axis,

@@ -2,142 +2,153 @@
 
 Closed-form H2 norm (Lyapunov, or modal for many ``B_c``) for rational holds; Gauss-Legendre
 quadrature on pole-adapted panels for ``zoh`` and ``discrete``, with the closed-loop stability
-test each needs (argument principle for ``zoh``).  See :mod:`analysis.transparency`.
+test each needs (:mod:`analysis.transparency.stability`).  See
+:mod:`analysis.transparency.design` for the reading of the paper.
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from dataclasses import dataclass
 
 import numpy as np
 from scipy import linalg
 
 from analysis.errors import ValidationError
 from analysis.transparency.hinf import gauss_nodes, panel_breakpoints
-from analysis.transparency.holds import RATIONAL_HOLDS, hold_response
-from analysis.transparency.settings import IndexResult
-from analysis.transparency.loops import SampledLoopMixin
+from analysis.transparency.holds import RATIONAL_HOLDS
+from analysis.transparency.loops import LoopRealizations, check_bc
+from analysis.transparency.settings import IndexResult, WallSettings
+from analysis.transparency.stability import ClosedLoopStability, Nodes, unstable_reason
 
-__all__ = ["IndexMixin"]
+__all__ = ["ErrorRealization", "TransparencyIndex", "weight", "wall_admittance"]
 
 
-class IndexMixin(SampledLoopMixin):
-    """``J`` part of :class:`analysis.transparency.WallDesign`.
+def weight(settings: WallSettings, s: np.ndarray) -> np.ndarray:
+    """``w1(s) = (w_c/(s + w_c))^r`` (eq. 11)."""
+    return (settings.weight_cutoff / (np.asarray(s) + settings.weight_cutoff)) ** settings.weight_order
 
-    The host provides, besides what :class:`SampledLoopMixin` needs, the methods stubbed below.
-    """
 
-    if TYPE_CHECKING:
-        def _check_bc(self, bc) -> np.ndarray: ...
+def wall_admittance(settings: WallSettings, s: np.ndarray) -> np.ndarray:
+    """``Y_v(s) = s/(K + B s)`` (eq. 8)."""
+    s = np.asarray(s, dtype=complex)
+    return s / (settings.wall_stiffness + settings.wall_damping * s)
 
-        def weight(self, s: np.ndarray) -> np.ndarray: ...
 
-        def wall_admittance(self, s: np.ndarray) -> np.ndarray: ...
+@dataclass(frozen=True)
+class ErrorRealization:
+    """``w1 (Y_v - Y_t)`` for a rational hold: ``x' = (a0 + B_c a1) x + b F``, ``e = c x``."""
 
-        def _continuous_parts(self, w: np.ndarray, oscillating: bool = True) -> tuple[np.ndarray, np.ndarray]: ...
+    a0: np.ndarray
+    a1: np.ndarray
+    b: np.ndarray
+    c: np.ndarray
 
-        def _rational_loop(self, hold: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]: ...
 
-        def _poles_many(self, bcs: np.ndarray, hold: str) -> np.ndarray: ...
+def _weight_ss(r: int, wc: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """``w1`` as ``(A, B, C, D)``: a chain of ``r`` first-order low-passes."""
+    Aw = -wc * np.eye(r) + wc * np.eye(r, k=-1)
+    Bw = np.zeros((r, 1))
+    Cw = np.zeros((1, r))
+    if r:
+        Bw[0, 0] = wc
+        Cw[0, -1] = 1.0
+    return Aw, Bw, Cw, 0.0 if r else 1.0
 
-        def _singularities(self, bcs: np.ndarray) -> np.ndarray: ...
 
-    def _error_parts(self, hold: str):
-        """``w1 (Y_v - Y_t)`` for a rational hold as ``(A0, A1, B, C)`` with ``A = A0 + B_c A1``,
-        or a reason string when it is not strictly proper."""
-        key = ("ep", hold)
-        if key in self._cache:
-            return self._cache[key]
-        st = self.settings
-        K, Bw = st.wall_stiffness, st.wall_damping
-        r, wc = st.weight_order, st.weight_cutoff
-        A0c, A1c, Bcl, Ccl = self._rational_loop(hold)
-        Aw = -wc * np.eye(r) + wc * np.eye(r, k=-1)
-        Bw_ = np.zeros((r, 1))
-        Cw = np.zeros((1, r))
-        if r:
-            Bw_[0, 0] = wc
-            Cw[0, -1] = 1.0
-        Dw = 0.0 if r else 1.0
-        if Bw > 0 and K > 0:
-            Av, Bv, Cv, Dv = np.array([[-K / Bw]]), np.array([[1.0]]), np.array([[-K / Bw**2]]), 1.0 / Bw
-        elif Bw > 0:
-            Av, Bv, Cv, Dv = np.zeros((0, 0)), np.zeros((0, 1)), np.zeros((1, 0)), 1.0 / Bw
-        else:
-            Av = Bv = Cv = None
-            Dv = 0.0
-        nw, nv, nc = r, (0 if Av is None else Av.shape[0]), A0c.shape[0]
-        N = nw + nv + nc
-        A0 = np.zeros((N, N))
-        A1 = np.zeros((N, N))
-        B = np.zeros((N, 1))
-        C = np.zeros((1, N))
-        W, V, L = slice(0, nw), slice(nw, nw + nv), slice(nw + nv, N)
-        A0[W, W] = Aw
-        B[W] = Bw_
-        A0[L, L] = A0c
-        A1[L, L] = A1c
-        A0[L, W] = Bcl @ Cw
-        B[L] = Bcl * Dw
-        C[0, L] = -Ccl[0]
-        if Av is not None:
-            A0[V, V] = Av
-            A0[V, W] = Bv @ Cw
-            B[V] = Bv * Dw
-            C[0, V] = Cv[0]
-            C[0, W] += Dv * Cw[0]
-            D = Dv * Dw
-        elif r == 0:
-            D = math.inf
-        else:  # B = 0: Y_v = s/K, s w1 = Cw Aw x + Cw Bw F
-            C[0, W] += (Cw @ Aw)[0] / K
-            D = float((Cw @ Bw_)[0, 0]) / K
-        if D != 0.0:
-            out = ("Y_v = s/K is improper (wall_damping = 0) and the weight has order 0" if math.isinf(D) else
-                   f"w1 (Y_v - Y_t) tends to {D:.6g} at high frequency (not strictly proper): "
-                   "raise the weight order")
-        else:
-            out = (A0, A1, B, C)
-        self._cache[key] = out
+def _error_realization(st: WallSettings, loop) -> ErrorRealization | str:
+    """Cascade ``w1`` -> (``Y_v`` - closed loop); a reason string when not strictly proper."""
+    K, Bw = st.wall_stiffness, st.wall_damping
+    Aw, Bw_, Cw, Dw = _weight_ss(st.weight_order, st.weight_cutoff)
+    r = st.weight_order
+    if Bw > 0 and K > 0:
+        Av, Bv, Cv, Dv = np.array([[-K / Bw]]), np.array([[1.0]]), np.array([[-K / Bw**2]]), 1.0 / Bw
+    elif Bw > 0:
+        Av, Bv, Cv, Dv = np.zeros((0, 0)), np.zeros((0, 1)), np.zeros((1, 0)), 1.0 / Bw
+    else:
+        Av = Bv = Cv = None
+        Dv = 0.0
+    nw, nv, nc = r, (0 if Av is None else Av.shape[0]), loop.a0.shape[0]
+    N = nw + nv + nc
+    A0, A1 = np.zeros((N, N)), np.zeros((N, N))
+    B, C = np.zeros((N, 1)), np.zeros((1, N))
+    W, V, L = slice(0, nw), slice(nw, nw + nv), slice(nw + nv, N)
+    A0[W, W] = Aw
+    B[W] = Bw_
+    A0[L, L] = loop.a0
+    A1[L, L] = loop.a1
+    A0[L, W] = loop.b @ Cw
+    B[L] = loop.b * Dw
+    C[0, L] = -loop.c[0]
+    if Av is not None:
+        A0[V, V] = Av
+        A0[V, W] = Bv @ Cw
+        B[V] = Bv * Dw
+        C[0, V] = Cv[0]
+        C[0, W] += Dv * Cw[0]
+        D = Dv * Dw
+    elif r == 0:
+        D = math.inf
+    else:  # B = 0: Y_v = s/K, s w1 = Cw Aw x + Cw Bw F
+        C[0, W] += (Cw @ Aw)[0] / K
+        D = float((Cw @ Bw_)[0, 0]) / K
+    if D != 0.0:
+        return ("Y_v = s/K is improper (wall_damping = 0) and the weight has order 0" if math.isinf(D) else
+                f"w1 (Y_v - Y_t) tends to {D:.6g} at high frequency (not strictly proper): "
+                "raise the weight order")
+    return ErrorRealization(A0, A1, B, C)
+
+
+class TransparencyIndex:
+    """``J(B_c)`` of eq. (11) for one design, one ``B_c`` or many."""
+
+    def __init__(self, loops: LoopRealizations):
+        self.loops = loops
+        self.settings = loops.settings
+        self.stability = ClosedLoopStability(loops)
+        self._errors: dict[str, ErrorRealization | str] = {}
+
+    def error_realization(self, hold: str) -> ErrorRealization | str:
+        """``w1 (Y_v - Y_t)`` for a rational hold, or a reason string when it is not strictly
+        proper (cached)."""
+        out = self._errors.get(hold)
+        if out is None:
+            out = self._errors[hold] = _error_realization(self.settings, self.loops.rational(hold))
         return out
 
-    def _unstable_reason(self, ev: np.ndarray) -> str:
-        return f"closed loop unstable (pole at {ev[np.argmax(ev.real)]:.6g} rad/s)"
-
-    def _j_lyapunov(self, bc: float, hold: str) -> IndexResult:
-        parts = self._error_parts(hold)
+    def lyapunov(self, bc: float, hold: str) -> IndexResult:
+        """``J`` from the Lyapunov equation of :meth:`error_realization`."""
+        parts = self.error_realization(hold)
         if isinstance(parts, str):
             return IndexResult(bc, math.inf, False, parts, "lyapunov")
-        A0, A1, B, C = parts
-        A = A0 + bc * A1
+        A = parts.a0 + bc * parts.a1
         ev = np.linalg.eigvals(A)
         if np.max(ev.real) >= 0:
-            return IndexResult(bc, math.inf, False, self._unstable_reason(ev), "lyapunov")
-        X = linalg.solve_continuous_lyapunov(A, -B @ B.T)
-        return IndexResult(bc, float((C @ X @ C.T)[0, 0]), True, "", "lyapunov")
+            return IndexResult(bc, math.inf, False, unstable_reason(ev), "lyapunov")
+        X = linalg.solve_continuous_lyapunov(A, -parts.b @ parts.b.T)
+        return IndexResult(bc, float((parts.c @ X @ parts.c.T)[0, 0]), True, "", "lyapunov")
 
-    def _j_modal_many(self, bcs: np.ndarray, hold: str) -> np.ndarray:
+    def h2_modal_many(self, bcs: np.ndarray, hold: str) -> np.ndarray:
         """H2 norms for many ``B_c`` at once from poles and residues, ``J = -sum_ij r_i r_j^* /
         (p_i + p_j^*)`` (the Lyapunov solution in modal form); rows with an ill-conditioned
         eigenbasis (cond > 1e6) are solved by Lyapunov instead."""
-        parts = self._error_parts(hold)
+        parts = self.error_realization(hold)
         if isinstance(parts, str):
             return np.full(bcs.size, math.inf)
-        A0, A1, B, C = parts
-        A = A0[None] + bcs[:, None, None] * A1[None]
+        A = parts.a0[None] + bcs[:, None, None] * parts.a1[None]
         lam, V = np.linalg.eig(A)
         good = np.linalg.cond(V) < 1e6
         Vs = np.where(good[:, None, None], V, np.eye(V.shape[1])[None])
-        g = np.linalg.solve(Vs, np.broadcast_to(B, (bcs.size,) + B.shape))[:, :, 0]
-        r = (C[None] @ Vs)[:, 0, :] * g
+        g = np.linalg.solve(Vs, np.broadcast_to(parts.b, (bcs.size,) + parts.b.shape))[:, :, 0]
+        r = (parts.c[None] @ Vs)[:, 0, :] * g
         J = -np.einsum("ri,rj,rij->r", r, r.conj(), 1.0 / (lam[:, :, None] + lam.conj()[:, None, :])).real
         J = np.where(np.max(lam.real, axis=1) < 0, J, math.inf)
         for i in np.flatnonzero(~good):
-            J[i] = self._j_lyapunov(float(bcs[i]), hold).index
+            J[i] = self.lyapunov(float(bcs[i]), hold).index
         return J
 
-    def _static_reason(self) -> str:
+    def static_reason(self) -> str:
+        """Why ``J`` is infinite for every ``B_c`` (the settings alone), or ``""``."""
         st = self.settings
         if st.hold == "discrete":
             return ""
@@ -148,7 +159,7 @@ class IndexMixin(SampledLoopMixin):
         return ""
 
     def quadrature_nodes(self, bcs: np.ndarray, per_decade: float = 8.0, order: int = 16,
-                         tail_eps: float = 1e-4) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                         tail_eps: float = 1e-4) -> Nodes:
         """Nodes/weights of the ``J`` quadrature shared by ``bcs``: ``(w, wt, w_tail, wt_tail)``.
 
         ``w_tail`` are the tail nodes (``e^{-sT}`` of ``zoh`` dropped there); ``J`` is
@@ -158,7 +169,7 @@ class IndexMixin(SampledLoopMixin):
         """
         st = self.settings
         T = st.sample_time
-        c = self._singularities(bcs)
+        c = self.loops.singularities(bcs)
         cmin = float(np.min(np.abs(c)))
         cmax = float(np.max(np.abs(c)))
         lo = 1e-3 * cmin
@@ -169,7 +180,7 @@ class IndexMixin(SampledLoopMixin):
         if st.hold == "zoh":
             bcmax = float(np.max(np.abs(bcs))) + 1e-300
             om = max(20.0 * cmax, 16.0 * math.pi / T,
-                     math.sqrt(2.0 * (bcmax + self.kc * T) / (self.plant.handle_mass * T * tail_eps)))
+                     math.sqrt(2.0 * (bcmax + st.kc * T) / (self.loops.plant.handle_mass * T * tail_eps)))
             om = min(om, 4096 * 2 * math.pi / T)
             brk = panel_breakpoints(lo, om, c, per_decade, max_width=math.pi / T)
         else:
@@ -179,109 +190,61 @@ class IndexMixin(SampledLoopMixin):
         u, ut = gauss_nodes(np.array([0.0, 0.25, 0.5, 1.0]), order)
         return w, wt, om / u, ut * om / (u * u)
 
-    def _yt_rows(self, bcs: np.ndarray, w: np.ndarray, oscillating: bool = True, md: dict | None = None):
-        """``Y_t`` (rows = ``bcs``) at ``w``."""
-        if self.settings.hold == "discrete":
-            md = md if md is not None else self._discrete_modal(bcs)
-            return self._modal_eval(md, np.arange(bcs.size), np.exp(1j * w * self.settings.sample_time), "Y")
-        a, h = self._continuous_parts(w, oscillating)
-        return 1.0 / (a[None, :] + bcs[:, None] * h[None, :])
-
-    def _integrand(self, bcs: np.ndarray, w: np.ndarray, oscillating: bool = True) -> np.ndarray:
+    def integrand(self, bcs: np.ndarray, w: np.ndarray, oscillating: bool = True) -> np.ndarray:
         """``|w1 (Y_v - Y_t)|^2`` for each ``B_c`` (rows) at ``w``."""
         s = 1j * w
-        e = self.weight(s)[None, :] * (self.wall_admittance(s)[None, :] - self._yt_rows(bcs, w, oscillating))
+        yt = self.loops.admittance_rows(bcs, w, oscillating)
+        e = weight(self.settings, s)[None, :] * (wall_admittance(self.settings, s)[None, :] - yt)
         return e.real**2 + e.imag**2
 
-    def _stable_many(self, bcs: np.ndarray, nodes=None) -> tuple[np.ndarray, list[str]]:
-        """Closed-loop stability per ``B_c`` and the reason when unstable."""
-        st = self.settings
-        if st.hold == "zoh":
-            return self._zoh_stable_many(bcs, nodes)
-        if st.hold == "discrete":
-            rad = np.max(np.abs(np.exp(self._poles_many(bcs, "discrete") * st.sample_time)), axis=1)
-            ok = rad < 1
-            return ok, ["" if o else f"sampled loop unstable (|z| = {x:.6g})" for o, x in zip(ok, rad)]
-        ev = self._poles_many(bcs, st.hold)
-        ok = np.max(ev.real, axis=1) < 0
-        return ok, ["" if o else self._unstable_reason(e) for o, e in zip(ok, ev)]
-
-    def _zoh_stable_many(self, bcs: np.ndarray, nodes=None) -> tuple[np.ndarray, list[str]]:
-        """Argument principle for ``g(s) = s (1/P + H C)`` (``s`` dropped when ``K_c = 0``).
-
-        ``g`` is analytic in the right half plane (``H`` is entire, ``1/P`` has no RHP poles for
-        a passive device) and ``~ m_0 s^d`` on a large arc, ``d = 2`` (1 if ``K_c = 0``), so the
-        number of RHP closed-loop poles is ``d/2 - Delta arg g(j w)|_{0+}^{inf} / pi``; the phase
-        is tracked on the quadrature nodes (panels resolve every surrogate resonance).
-        """
-        w0, _, w1, _ = nodes if nodes is not None else self.quadrature_nodes(bcs)
-        T = self.settings.sample_time
-        w0 = w0[w0 > 0]
-        w1 = np.sort(w1)
-        w = np.concatenate([w0, w1])
-        s = 1j * w
-        H = np.concatenate([hold_response("zoh", 1j * w0, T), hold_response("zoh", 1j * w1, T, oscillating=False)])
-        Z = self.plant.impedance(s)
-        if self.kc != 0:
-            g, d = (s * Z)[None, :] + H[None, :] * (bcs[:, None] * s[None, :] + self.kc), 2
-        else:
-            g, d = Z[None, :] + H[None, :] * bcs[:, None], 1
-        ph = np.unwrap(np.angle(g), axis=1)
-        step = np.max(np.abs(np.diff(ph, axis=1)), axis=1)
-        end = ph[:, -1] + np.angle(np.exp(1j * (d * math.pi / 2 - ph[:, -1])))
-        n_rhp = np.rint(d / 2 - (end - ph[:, 0]) / math.pi).astype(int)
-        resolved = (step < 0.5 * math.pi) & (np.min(np.abs(g), axis=1) > 0)
-        ok = resolved & (n_rhp == 0)
-        reasons = []
-        for o, rsv, n in zip(ok, resolved, n_rhp):
-            reasons.append("" if o else ("stability of the zoh model could not be resolved on the grid" if not rsv
-                                         else f"closed loop (zoh model) unstable: {n} poles in the right half plane"))
-        return ok, reasons
+    def _quadrature(self, bcs: np.ndarray, nodes: Nodes) -> np.ndarray:
+        """``J`` for the rows ``bcs`` by the quadrature ``nodes`` (stable loops only)."""
+        w, wt, wtl, wtt = nodes
+        tot = self.integrand(bcs, w) @ wt
+        if wtl.size:
+            tot += self.integrand(bcs, wtl, oscillating=False) @ wtt
+        return tot / math.pi
 
     def index_result(self, bc: float, method: str = "auto", per_decade: float = 8.0, order: int = 16) -> IndexResult:
         """``J(B_c)`` (eq. 11) with its status; ``method`` ``auto``/``lyapunov``/``quadrature``."""
-        bc = float(self._check_bc(bc)[0])
+        bc = float(check_bc(bc)[0])
         st = self.settings
         if method == "auto":
             method = "lyapunov" if st.hold in RATIONAL_HOLDS else "quadrature"
         if method == "lyapunov":
             if st.hold not in RATIONAL_HOLDS:
                 raise ValidationError("method", "'quadrature' for a non-rational hold", method)
-            return self._j_lyapunov(bc, st.hold)
+            return self.lyapunov(bc, st.hold)
         if method != "quadrature":
             raise ValidationError("method", "'auto', 'lyapunov' or 'quadrature'", method)
-        reason = self._static_reason()
+        reason = self.static_reason()
         bcs = np.array([bc])
         nodes = self.quadrature_nodes(bcs, per_decade, order)
         if not reason:
-            reason = self._stable_many(bcs, nodes)[1][0]
+            reason = self.stability.stable_many(bcs, nodes)[1][0]
         if reason:
             return IndexResult(bc, math.inf, False, reason, "quadrature")
         w, wt, wtl, wtt = nodes
-        total = self._integrand(bcs, w)[0] @ wt
+        total = self.integrand(bcs, w)[0] @ wt
         if wtl.size:
-            total += self._integrand(bcs, wtl, oscillating=False)[0] @ wtt
+            total += self.integrand(bcs, wtl, oscillating=False)[0] @ wtt
         return IndexResult(bc, float(total / math.pi), True, "", "quadrature", w.size + wtl.size)
 
     def performance_index(self, bc: float) -> float:
         """``J(B_c)`` of eq. (11); ``inf`` when not finite (see :meth:`index_result` for why)."""
         return self.index_result(bc).index
 
-    def _index_many(self, bcs: np.ndarray) -> np.ndarray:
+    def index_many(self, bcs: np.ndarray) -> np.ndarray:
+        """``J`` for every ``B_c`` of ``bcs`` (``inf`` where not finite), batched."""
         st = self.settings
         if st.hold in RATIONAL_HOLDS:
-            return self._j_modal_many(bcs, st.hold)
+            return self.h2_modal_many(bcs, st.hold)
         out = np.full(bcs.size, math.inf)
-        if self._static_reason():
+        if self.static_reason():
             return out
         nodes = self.quadrature_nodes(bcs)
-        ok = self._stable_many(bcs, nodes)[0]
+        ok = self.stability.stable_many(bcs, nodes)[0]
         if not ok.any():
             return out
-        sb = bcs[ok]
-        w, wt, wtl, wtt = nodes
-        tot = self._integrand(sb, w) @ wt
-        if wtl.size:
-            tot += self._integrand(sb, wtl, oscillating=False) @ wtt
-        out[ok] = tot / math.pi
+        out[ok] = self._quadrature(bcs[ok], nodes)
         return out

@@ -1,111 +1,142 @@
-"""The exact sampled loop of the wall controller (``discrete`` hold and every step response).
+"""Loop realisations of the wall controller (Eom, Suh & Yi, eq. 9, 12): the transmitted
+admittance ``Y_t = P/(1 + H P C)`` in every form the analysis needs.
 
-ZOH discretization of the plant by the matrix exponential, the closed sampled loop with the
-backward-difference controller ``u_k = K_c x_k + B_c (x_k - x_{k-1})/T`` (see
-:mod:`analysis.transparency`), and ``Y_t(z)``, ``L(z)`` in modal form for many ``B_c`` at once.
+* the frequency-domain parts ``a = 1/P + H K_c/s`` and ``h = H``, so that
+  ``Y_t = 1/(a + B_c h)`` for many ``B_c`` on one grid;
+* the state space of the closed loop with a rational hold, affine in ``B_c``
+  (:class:`RationalLoop`), and its poles;
+* the exact sampled loop (:class:`analysis.transparency.discrete_loop.DiscreteLoop`);
+* the singularities that guide the frequency grids and quadrature panels.
+
+See :mod:`analysis.transparency.design` for the reading of the paper.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
-from scipy import linalg
 
+from analysis.errors import ValidationError
+from analysis.transparency.discrete_loop import DiscreteLoop, DiscreteModal
+from analysis.transparency.holds import hold_response, hold_state_space
+from analysis.transparency.plant import WallPlant
 from analysis.transparency.settings import WallSettings
-from analysis.transparency.plant import _Plant, _ss_freq
 
-__all__ = ["SampledLoopMixin"]
+__all__ = ["check_bc", "RationalLoop", "LoopRealizations"]
+
+_SINGULARITY_CACHE = 64  # distinct B_c vectors whose singularities are kept
 
 
-class SampledLoopMixin:
-    """Sampled-loop part of :class:`analysis.transparency.WallDesign`.
+def check_bc(bc) -> np.ndarray:
+    """Controller dampings ``B_c`` as a 1-d float array; every value finite."""
+    arr = np.atleast_1d(np.asarray(bc, dtype=float))
+    bad = ~np.isfinite(arr)
+    if bad.any():
+        raise ValidationError("bc", "finite (N s/m)", float(arr[bad][0]), int(np.flatnonzero(bad)[0]))
+    return arr
 
-    The host provides ``settings``, ``plant``, ``kc`` and the ``_cache`` dict.
-    """
 
-    settings: WallSettings
-    plant: _Plant
-    kc: float
-    _cache: dict
+@dataclass(frozen=True)
+class RationalLoop:
+    """``A_cl(B_c) = a0 + B_c a1``, ``b`` (human force in), ``c`` (velocity out) of eq. (9) with a
+    rational hold.  States: plant, ``xi = int v`` (only when ``K_c != 0``), hold."""
 
-    def _zoh(self, A: np.ndarray, B: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:
-        n, m = A.shape[0], B.shape[1]
-        M = np.zeros((n + m, n + m))
-        M[:n, :n] = A * dt
-        M[:n, n:] = B * dt
-        E = linalg.expm(M)
-        return E[:n, :n], E[:n, n:]
+    a0: np.ndarray
+    a1: np.ndarray
+    b: np.ndarray
+    c: np.ndarray
 
-    def _augmented(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Plant plus handle position ``xi``: ``(A, B, Cv, Cx)``."""
-        p = self.plant
-        n = p.order
-        A = np.zeros((n + 1, n + 1))
-        A[:n, :n] = p.A
-        A[n, :n] = p.Cv[0]
-        B = np.vstack([p.B, [[0.0]]])
-        Cv = np.hstack([p.Cv, [[0.0]]])
-        Cx = np.zeros((1, n + 1))
-        Cx[0, n] = 1.0
-        return A, B, Cv, Cx
 
-    def _discrete_loop(self, alpha: float = 0.0, beta: float = 0.0):
-        """Closed sampled loop ``x+ = (Ad0 + B_c Ad1) x + Bd F``.
+class LoopRealizations:
+    """The closed loop of one design in its frequency-domain, rational and sampled forms."""
 
-        Outputs: velocity ``Cd x`` and the ZOH-sampled ``W P`` of eq. (16),
-        ``(CL0 + B_c CL1) x + Dw F``.  State: plant, handle position, previous position.
-        """
-        key = ("dl",)
-        if key not in self._cache:
-            A, B, Cv, Cx = self._augmented()
-            Phi, Gam = self._zoh(A, B, self.settings.sample_time)
-            self._cache[key] = (A, B, Cv, Cx, Phi, Gam)
-        A, B, Cv, Cx, Phi, Gam = self._cache[key]
-        T, kc = self.settings.sample_time, self.kc
-        n = A.shape[0]
-        Ad0 = np.zeros((n + 1, n + 1))
-        Ad1 = np.zeros((n + 1, n + 1))
-        Ad0[:n, :n] = Phi - kc * (Gam @ Cx)
-        Ad1[:n, :n] = -(Gam @ Cx) / T
-        Ad1[:n, n] = Gam[:, 0] / T
-        Ad0[n, :n] = Cx[0]
-        Bd = np.vstack([Gam, [[0.0]]])
-        Cd = np.hstack([Cv, [[0.0]]])
-        # W P sampled: (alpha m Cv A + beta b Cv) x + alpha m Cv B u_p, u_p = F - (kc + bc/T) xi + bc/T xi_prev
-        mw, bw = self.plant.m_w, self.plant.b_w
-        Cw = alpha * mw * (Cv @ A) + beta * bw * Cv
-        Dw = float(alpha * mw * (Cv @ B)[0, 0])
-        CL0 = np.hstack([Cw - Dw * kc * Cx, [[0.0]]])
-        CL1 = np.hstack([-Dw * Cx / T, [[Dw / T]]])
-        return Ad0, Ad1, Bd, Cd, CL0, CL1, Dw
+    def __init__(self, settings: WallSettings, plant: WallPlant):
+        self.settings = settings
+        self.plant = plant
+        self.discrete = DiscreteLoop(settings, plant)
+        self._rational: dict[str, RationalLoop] = {}
+        self._singularities: dict[bytes, np.ndarray] = {}
 
-    def _discrete_modal(self, bcs: np.ndarray, alpha: float = 0.0, beta: float = 0.0) -> dict:
-        """Poles and residues of ``Y_t(z)`` and ``L(z)`` for every ``B_c`` (batched eigen-solves).
+    def continuous_parts(self, w: np.ndarray, oscillating: bool = True) -> tuple[np.ndarray, np.ndarray]:
+        """``a = 1/P + H K_c/s`` and ``h = H`` at ``s = j w``: ``Y_t = 1/(a + B_c h)``."""
+        st = self.settings
+        s = 1j * np.asarray(w, dtype=float)
+        H = hold_response(st.hold, s, st.sample_time, st.lowpass_damping, oscillating)
+        return self.plant.impedance(s) + H * (st.kc / s), H
 
-        Rows whose eigenvector matrix is ill-conditioned (cond > 1e8) keep their matrices and
-        are evaluated by direct solves instead.
-        """
-        Ad0, Ad1, Bd, Cd, CL0, CL1, Dw = self._discrete_loop(alpha, beta)
-        Ad = Ad0[None] + bcs[:, None, None] * Ad1[None]
-        lam, V = np.linalg.eig(Ad)
-        good = np.linalg.cond(V) < 1e8
-        g = np.linalg.solve(np.where(good[:, None, None], V, np.eye(V.shape[1])[None]),
-                            np.broadcast_to(Bd, (bcs.size,) + Bd.shape))[:, :, 0]
-        CL = CL0[None] + bcs[:, None, None] * CL1[None]
-        rY = (Cd[None] @ V)[:, 0, :] * g
-        rL = (CL @ V)[:, 0, :] * g
-        return {"lam": lam, "rY": rY, "rL": rL, "Dw": Dw, "good": good, "Ad": Ad, "Bd": Bd, "Cd": Cd, "CL": CL}
+    def rational(self, hold: str) -> RationalLoop:
+        """The closed loop of eq. (9) with the rational ``hold`` (cached)."""
+        loop = self._rational.get(hold)
+        if loop is None:
+            loop = self._rational[hold] = self._build_rational(hold)
+        return loop
 
-    @staticmethod
-    def _modal_eval(md: dict, rows: np.ndarray, z: np.ndarray, which: str) -> np.ndarray:
-        """``sum_k r_k/(z - lam_k) (+ Dw)`` for ``rows`` (R) at ``z`` (P or R x P)."""
-        lam = md["lam"][rows]
-        r = md["rY" if which == "Y" else "rL"][rows]
-        zz = z if z.ndim == 2 else np.broadcast_to(z, (rows.size, z.size))
-        out = np.einsum("rk,rpk->rp", r, 1.0 / (zz[:, :, None] - lam[:, None, :]))
-        if which == "L":
-            out = out + md["Dw"]
-        for q in np.flatnonzero(~md["good"][rows]):
-            j = rows[q]
-            C = md["Cd"] if which == "Y" else md["CL"][j]
-            out[q] = _ss_freq(md["Ad"][j], md["Bd"], C, 0.0 if which == "Y" else md["Dw"], zz[q])
-        return out
+    def _build_rational(self, hold: str) -> RationalLoop:
+        st, p = self.settings, self.plant
+        Ah, Bh, Ch, Dh = hold_state_space(hold, st.sample_time, st.lowpass_damping)
+        kc = st.kc
+        npl, nh = p.order, Ah.shape[0]
+        nx = 1 if kc != 0 else 0
+        N = npl + nx + nh
+        A0 = np.zeros((N, N))
+        A1 = np.zeros((N, N))
+        P, X, Hs = slice(0, npl), slice(npl, npl + nx), slice(npl + nx, N)
+        dh = float(Dh[0, 0])
+        A0[P, P] = p.A
+        A0[P, Hs] = -p.B @ Ch
+        A1[P, P] = -dh * (p.B @ p.Cv)
+        A1[Hs, P] = Bh @ p.Cv
+        if nx:
+            A0[P, X] = -dh * kc * p.B
+            A0[X, P] = p.Cv
+            A0[Hs, X] = Bh * kc
+        A0[Hs, Hs] = Ah
+        Bcl = np.zeros((N, 1))
+        Bcl[P] = p.B
+        Ccl = np.zeros((1, N))
+        Ccl[0, P] = p.Cv[0]
+        return RationalLoop(A0, A1, Bcl, Ccl)
+
+    def poles_many(self, bcs: np.ndarray, hold: str) -> np.ndarray:
+        """Closed-loop poles (rows = ``bcs``), batched; ``log(z)/T`` for ``discrete``."""
+        if hold == "discrete":
+            return self.discrete.poles(bcs)
+        loop = self.rational(hold)
+        return np.linalg.eigvals(loop.a0[None] + bcs[:, None, None] * loop.a1[None])
+
+    def singularities(self, bcs: np.ndarray) -> np.ndarray:
+        """Complex ``w0 + j sigma`` of the integrand's poles for all ``bcs`` (panel/grid guides)."""
+        key = bcs.tobytes()
+        c = self._singularities.get(key)
+        if c is None:
+            c = self._find_singularities(bcs)
+            if len(self._singularities) > _SINGULARITY_CACHE:
+                self._singularities.clear()
+            self._singularities[key] = c
+        return c
+
+    def _find_singularities(self, bcs: np.ndarray) -> np.ndarray:
+        st = self.settings
+        sur = ("pade", "lowpass2") if st.hold == "zoh" else (st.hold,)
+        poles = [self.plant.poles()] + [self.poles_many(bcs, h).ravel() for h in sur]
+        p = np.concatenate(poles)
+        c = np.abs(p.imag) + 1j * np.abs(p.real)
+        extra = [1j * st.weight_cutoff]
+        if st.wall_damping > 0 and st.wall_stiffness > 0:
+            extra.append(1j * st.wall_stiffness / st.wall_damping)
+        c = np.concatenate([c, extra])
+        c = c[np.isfinite(c) & (np.abs(c) > 0)]
+        # merge near-duplicates (many B_c give nearby poles): 0.1 % on a log scale
+        key2 = np.round(np.log(np.abs(c)) * 1000.0) + 1j * np.round(np.angle(c) * 1000.0)
+        _, first = np.unique(key2, return_index=True)
+        return c[np.sort(first)]
+
+    def admittance_rows(self, bcs: np.ndarray, w: np.ndarray, oscillating: bool = True,
+                        modal: DiscreteModal | None = None) -> np.ndarray:
+        """``Y_t`` (rows = ``bcs``) at ``w``; ``Y_t(e^{jwT})`` for the ``discrete`` hold."""
+        if self.settings.hold == "discrete":
+            md = modal if modal is not None else self.discrete.modal(bcs)
+            return md.admittance(np.arange(bcs.size), np.exp(1j * w * self.settings.sample_time))
+        a, h = self.continuous_parts(w, oscillating)
+        return 1.0 / (a[None, :] + bcs[:, None] * h[None, :])

@@ -23,24 +23,26 @@ its state-space realization (not from this formula), and the tests compare the t
 force ``u`` is the actuator force; the observer also rejects forces applied at the handle (``d``),
 which is why the paper closes the wall loop around the observer-compensated device.
 The observer is modelled in continuous time; time responses use the exact (matrix-exponential)
-discretization of the whole loop for a step input.
+discretization of the whole loop for a step input.  Its settings record :class:`ObserverSettings`
+(a profile section) lives in the light :mod:`analysis.transparency.settings` and is re-exported here.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from dataclasses import asdict, dataclass, fields, replace
+from dataclasses import dataclass
 
 import numpy as np
 from scipy import linalg
 
+from analysis.chain.continued_fraction import handle_admittance
 from analysis.chain.device import Device
+from analysis.checks import Real, frequencies, integer, positive
 from analysis.errors import ValidationError
-from analysis.transparency.five_bar import FIVE_BAR_PRESETS, five_bar_preset
-from analysis.transparency.design import handle_admittance
-from analysis.transparency.settings import _choice, _integer, _real
+from analysis.transparency.five_bar import five_bar_preset
+from analysis.transparency.settings import OBSERVER_PRESETS, ObserverSettings
 
 __all__ = [
+    "PRESETS",
     "ObserverSettings",
     "DisturbanceObserver",
     "ObserverResponse",
@@ -49,61 +51,10 @@ __all__ = [
     "TwoAxisStep",
 ]
 
-PRESETS = tuple(FIVE_BAR_PRESETS)
-
-
-@dataclass(frozen=True)
-class ObserverSettings:
-    """Observer parameters (a profile section; ``to_dict``/``from_dict``).
-
-    ``nominal_mass``/``nominal_damping`` are the single-axis ``P_n``; ``order``/``cutoff`` the
-    binomial ``Q``; ``alpha``, ``beta``, ``delta`` perturb the real single-axis plant (eq. 13);
-    ``preset`` is the two-axis device; ``step_force`` (N, on x) and ``step_duration`` (s) the
-    cross-coupling time response.
-    """
-
-    nominal_mass: float = 0.01
-    nominal_damping: float = 0.022
-    order: int = 2
-    cutoff: float = 200.0
-    alpha: float = 0.5
-    beta: float = 0.5
-    delta: float = 1.0
-    preset: str = "five_bar_centre"
-    step_force: float = 1.0
-    step_duration: float = 0.2
-
-    def __post_init__(self) -> None:
-        s = object.__setattr__
-        s(self, "nominal_mass", _real("nominal_mass", self.nominal_mass, lo=0.0, lo_open=True,
-                                      allowed="> 0 and finite (kg)"))
-        s(self, "nominal_damping", _real("nominal_damping", self.nominal_damping, lo=0.0,
-                                         allowed=">= 0 and finite (N s/m)"))
-        s(self, "order", _integer("order", self.order, 1, 8))
-        s(self, "cutoff", _real("cutoff", self.cutoff, lo=0.0, lo_open=True, allowed="> 0 and finite (rad/s)"))
-        s(self, "alpha", _real("alpha", self.alpha, lo=0.0, hi=1.0, hi_open=True, allowed="in [0, 1)"))
-        s(self, "beta", _real("beta", self.beta, lo=0.0, hi=1.0, allowed="in [0, 1]"))
-        s(self, "delta", _real("delta", self.delta, lo=-1.0, hi=1.0, allowed="in [-1, 1]"))
-        _choice("preset", self.preset, PRESETS)
-        s(self, "step_force", _real("step_force", self.step_force, allowed="finite (N)"))
-        s(self, "step_duration", _real("step_duration", self.step_duration, lo=0.0, lo_open=True, hi=100.0,
-                                       allowed="in (0, 100] s"))
-
-    def to_dict(self) -> dict:
-        return asdict(self)
-
-    @classmethod
-    def from_dict(cls, data: Mapping) -> ObserverSettings:
-        if not isinstance(data, Mapping):
-            raise ValidationError("observer", "an object", data)
-        known = {f.name for f in fields(cls)}
-        for key in data:
-            if key not in known:
-                raise ValidationError(str(key), "a known field: " + ", ".join(sorted(known)), data[key])
-        return cls(**dict(data))
-
-    def replace(self, **changes) -> ObserverSettings:
-        return replace(self, **changes)
+#: The two-axis devices an :class:`ObserverSettings` may name.
+PRESETS = OBSERVER_PRESETS
+_FORCE = Real(unit="N")
+_DURATION = Real(lo=0.0, lo_open=True, hi=100.0, allowed="in (0, 100] s")
 
 
 @dataclass(frozen=True)
@@ -181,9 +132,7 @@ class DisturbanceObserver:
                  delta: float = 0.0) -> ObserverResponse:
         """Responses at ``w`` for a real plant given as values ``P(jw)``, a :class:`Device` (handle
         admittance), or ``None`` (eq. 13 with ``alpha``, ``beta``, ``delta``)."""
-        w = np.asarray(w, dtype=float)
-        if w.size and (not np.all(np.isfinite(w)) or np.any(w <= 0)):
-            raise ValidationError("frequency", "finite and > 0 (rad/s)", w)
+        w = frequencies(w)
         s = 1j * w
         if plant is None:
             P = self.perturbed_plant(s, alpha, beta, delta)
@@ -216,8 +165,8 @@ class TwoAxisObserver:
         if np.min(np.linalg.eigvalsh(B)) < -1e-12 * max(1.0, np.abs(B).max()):
             raise ValidationError("damping", "positive semidefinite", B.tolist())
         self.M, self.B = M, B
-        self.order = _integer("order", order, 1, 8)
-        self.cutoff = _real("cutoff", cutoff, lo=0.0, lo_open=True, allowed="> 0 and finite (rad/s)")
+        self.order = integer("order", order, 1, 8)
+        self.cutoff = positive("cutoff", cutoff, "rad/s")
         self.Mn = np.diag(M).copy() if nominal_mass is None else np.asarray(nominal_mass, float).reshape(2)
         self.Bn = np.diag(B).copy() if nominal_damping is None else np.asarray(nominal_damping, float).reshape(2)
 
@@ -274,9 +223,7 @@ class TwoAxisObserver:
     # -- views --------------------------------------------------------------------------------
     def coupling(self, w) -> CouplingResponse:
         """``v_y/F_x`` and ``v_x/F_x`` with and without the observers at ``w`` (rad/s)."""
-        w = np.asarray(w, dtype=float)
-        if w.size and (not np.all(np.isfinite(w)) or np.any(w <= 0)):
-            raise ValidationError("frequency", "finite and > 0 (rad/s)", w)
+        w = frequencies(w)
         s = 1j * w
         out = {}
         for obs in (False, True):
@@ -295,9 +242,9 @@ class TwoAxisObserver:
 
     def step_response(self, force: float = 1.0, duration: float = 0.2, points: int = 2001) -> TwoAxisStep:
         """Commanded force step on x: exact discretization ``x_{k+1} = e^{A h} x_k + Gamma F``."""
-        force = _real("force", force, allowed="finite (N)")
-        duration = _real("duration", duration, lo=0.0, lo_open=True, hi=100.0, allowed="in (0, 100] s")
-        points = _integer("points", points, 2, 10**6)
+        force = _FORCE("force", force)
+        duration = _DURATION("duration", duration)
+        points = integer("points", points, 2, 10**6)
         t = np.linspace(0.0, duration, points)
         h = t[1] - t[0]
         res = {}

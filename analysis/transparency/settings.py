@@ -1,20 +1,27 @@
 """Settings and result objects of the wall-controller design (Eom, Suh & Yi); see
-:mod:`analysis.transparency` for the analysis itself.  Frozen dataclasses, nothing here computes."""
+:mod:`analysis.transparency` for the analysis itself.  Frozen dataclasses, nothing here computes.
+
+The settings records (:class:`WallSettings`, :class:`ObserverSettings`) are profile sections,
+validated by :mod:`analysis.checks`; this module is light (no design or observer code) so that
+the profile record can hold them without loading the wall-design stack."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
-from dataclasses import asdict, dataclass, fields, replace
+from dataclasses import dataclass
 
 import numpy as np
 
+from analysis.checks import Real, SettingsRecord, choice, integer, nonnegative, positive, real
 from analysis.errors import ValidationError
+from analysis.transparency.five_bar import FIVE_BAR_PRESETS
 from analysis.transparency.holds import HOLDS
 
 __all__ = [
     "PLANTS",
+    "OBSERVER_PRESETS",
     "WallSettings",
+    "ObserverSettings",
     "IndexResult",
     "RobustnessPeak",
     "OptimalDamping",
@@ -23,39 +30,21 @@ __all__ = [
 ]
 
 PLANTS = ("rigid", "chain")
+#: The two-axis devices of :class:`ObserverSettings` (:data:`~analysis.transparency.five_bar.FIVE_BAR_PRESETS`).
+OBSERVER_PRESETS = tuple(FIVE_BAR_PRESETS)
 
 
 # ----------------------------------------------------------------------------------------------
 # settings (stored in the profile)
 # ----------------------------------------------------------------------------------------------
-def _real(name: str, value, *, lo: float | None = None, lo_open: bool = False, hi: float | None = None,
-          hi_open: bool = False, allowed: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ValidationError(name, allowed, value)
-    x = float(value)
-    if not math.isfinite(x):
-        raise ValidationError(name, allowed, value)
-    if lo is not None and (x < lo or (lo_open and x == lo)):
-        raise ValidationError(name, allowed, value)
-    if hi is not None and (x > hi or (hi_open and x == hi)):
-        raise ValidationError(name, allowed, value)
-    return x
-
-
-def _integer(name: str, value, lo: int, hi: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not lo <= int(value) <= hi:
-        raise ValidationError(name, f"an integer in [{lo}, {hi}]", value)
-    return int(value)
-
-
-def _choice(name: str, value, options: tuple[str, ...]) -> str:
-    if not isinstance(value, str) or value not in options:
-        raise ValidationError(name, "one of " + ", ".join(repr(o) for o in options), value)
-    return value
+_UNIT_INTERVAL_OPEN = Real(lo=0.0, hi=1.0, hi_open=True)  # "in [0, 1)"
+_UNIT_INTERVAL = Real(lo=0.0, hi=1.0)  # "in [0, 1]"
+_DURATION = Real(lo=0.0, lo_open=True, hi=100.0, allowed="in (0, 100] s")
+_FORCE = Real(unit="N")  # "finite (N)"
 
 
 @dataclass(frozen=True)
-class WallSettings:
+class WallSettings(SettingsRecord):
     """Every parameter of a wall-controller design (a profile section; ``to_dict``/``from_dict``).
 
     Units: kg, N s/m, N/m, s, rad/s, N.  ``controller_stiffness = None`` means ``K_c = K``.
@@ -63,6 +52,8 @@ class WallSettings:
     ``bc_min .. bc_max`` (``bc_count`` values, linear) is the range of the Fig. 8 curves and of
     the search for the optimum.
     """
+
+    record_name = "transparency"
 
     mass: float = 0.01
     damping: float = 0.022
@@ -84,59 +75,73 @@ class WallSettings:
     step_duration: float = 0.5
 
     def __post_init__(self) -> None:
-        pos = "> 0 and finite"
-        nonneg = ">= 0 and finite"
         s = object.__setattr__
-        s(self, "mass", _real("mass", self.mass, lo=0.0, lo_open=True, allowed=pos + " (kg)"))
-        s(self, "damping", _real("damping", self.damping, lo=0.0, allowed=nonneg + " (N s/m)"))
-        s(self, "wall_stiffness", _real("wall_stiffness", self.wall_stiffness, lo=0.0, allowed=nonneg + " (N/m)"))
-        s(self, "wall_damping", _real("wall_damping", self.wall_damping, lo=0.0, allowed=nonneg + " (N s/m)"))
+        s(self, "mass", positive("mass", self.mass, "kg"))
+        s(self, "damping", nonnegative("damping", self.damping, "N s/m"))
+        s(self, "wall_stiffness", nonnegative("wall_stiffness", self.wall_stiffness, "N/m"))
+        s(self, "wall_damping", nonnegative("wall_damping", self.wall_damping, "N s/m"))
         if self.wall_stiffness == 0.0 and self.wall_damping == 0.0:
             raise ValidationError("wall_damping", "> 0 when wall_stiffness = 0 (the wall needs K or B)", 0.0)
         if self.controller_stiffness is not None:
-            s(self, "controller_stiffness", _real("controller_stiffness", self.controller_stiffness, lo=0.0,
-                                                  allowed=nonneg + " (N/m) or null for K_c = K"))
-        s(self, "sample_time", _real("sample_time", self.sample_time, lo=0.0, lo_open=True, allowed=pos + " (s)"))
-        _choice("hold", self.hold, HOLDS)
-        s(self, "lowpass_damping", _real("lowpass_damping", self.lowpass_damping, lo=0.0, lo_open=True,
-                                         allowed=pos))
-        s(self, "weight_order", _integer("weight_order", self.weight_order, 0, 8))
-        s(self, "weight_cutoff", _real("weight_cutoff", self.weight_cutoff, lo=0.0, lo_open=True,
-                                       allowed=pos + " (rad/s)"))
-        s(self, "alpha", _real("alpha", self.alpha, lo=0.0, hi=1.0, hi_open=True, allowed="in [0, 1)"))
-        s(self, "beta", _real("beta", self.beta, lo=0.0, hi=1.0, allowed="in [0, 1]"))
-        s(self, "bc_min", _real("bc_min", self.bc_min, allowed="finite (N s/m)"))
-        s(self, "bc_max", _real("bc_max", self.bc_max, allowed="finite (N s/m)"))
+            s(self, "controller_stiffness", real("controller_stiffness", self.controller_stiffness, lo=0.0,
+                                                 allowed=">= 0 and finite (N/m) or null for K_c = K"))
+        s(self, "sample_time", positive("sample_time", self.sample_time, "s"))
+        choice("hold", self.hold, HOLDS)
+        s(self, "lowpass_damping", positive("lowpass_damping", self.lowpass_damping))
+        s(self, "weight_order", integer("weight_order", self.weight_order, 0, 8))
+        s(self, "weight_cutoff", positive("weight_cutoff", self.weight_cutoff, "rad/s"))
+        s(self, "alpha", _UNIT_INTERVAL_OPEN("alpha", self.alpha))
+        s(self, "beta", _UNIT_INTERVAL("beta", self.beta))
+        s(self, "bc_min", real("bc_min", self.bc_min, unit="N s/m"))
+        s(self, "bc_max", real("bc_max", self.bc_max, unit="N s/m"))
         if not self.bc_max > self.bc_min:
             raise ValidationError("bc_max", f"> bc_min = {self.bc_min}", self.bc_max)
-        s(self, "bc_count", _integer("bc_count", self.bc_count, 2, 10000))
-        _choice("plant", self.plant, PLANTS)
-        s(self, "step_force", _real("step_force", self.step_force, allowed="finite (N)"))
-        s(self, "step_duration", _real("step_duration", self.step_duration, lo=0.0, lo_open=True, hi=100.0,
-                                       allowed="in (0, 100] s"))
+        s(self, "bc_count", integer("bc_count", self.bc_count, 2, 10000))
+        choice("plant", self.plant, PLANTS)
+        s(self, "step_force", _FORCE("step_force", self.step_force))
+        s(self, "step_duration", _DURATION("step_duration", self.step_duration))
 
     @property
     def kc(self) -> float:
         """``K_c`` (``K`` unless ``controller_stiffness`` is set)."""
         return self.wall_stiffness if self.controller_stiffness is None else self.controller_stiffness
 
-    def to_dict(self) -> dict:
-        return asdict(self)
+@dataclass(frozen=True)
+class ObserverSettings(SettingsRecord):
+    """Disturbance-observer parameters (Eom, Suh & Yi, section 2; a profile section).
 
-    @classmethod
-    def from_dict(cls, data: Mapping) -> WallSettings:
-        """Validated construction from a profile section; missing keys take the defaults."""
-        if not isinstance(data, Mapping):
-            raise ValidationError("transparency", "an object", data)
-        known = {f.name for f in fields(cls)}
-        for key in data:
-            if key not in known:
-                raise ValidationError(str(key), "a known field: " + ", ".join(sorted(known)), data[key])
-        return cls(**dict(data))
+    ``nominal_mass``/``nominal_damping`` are the single-axis ``P_n`` of eq. (3); ``order``/``cutoff``
+    the binomial ``Q``; ``alpha``, ``beta``, ``delta`` perturb the real single-axis plant (eq. 13);
+    ``preset`` is the two-axis device (:data:`OBSERVER_PRESETS`); ``step_force`` (N, on x) and
+    ``step_duration`` (s) the cross-coupling time response.  The observer itself is
+    :mod:`analysis.transparency.observer`.
+    """
 
-    def replace(self, **changes) -> WallSettings:
-        return replace(self, **changes)
+    record_name = "observer"
 
+    nominal_mass: float = 0.01
+    nominal_damping: float = 0.022
+    order: int = 2
+    cutoff: float = 200.0
+    alpha: float = 0.5
+    beta: float = 0.5
+    delta: float = 1.0
+    preset: str = "five_bar_centre"
+    step_force: float = 1.0
+    step_duration: float = 0.2
+
+    def __post_init__(self) -> None:
+        s = object.__setattr__
+        s(self, "nominal_mass", positive("nominal_mass", self.nominal_mass, "kg"))
+        s(self, "nominal_damping", nonnegative("nominal_damping", self.nominal_damping, "N s/m"))
+        s(self, "order", integer("order", self.order, 1, 8))
+        s(self, "cutoff", positive("cutoff", self.cutoff, "rad/s"))
+        s(self, "alpha", _UNIT_INTERVAL_OPEN("alpha", self.alpha))
+        s(self, "beta", _UNIT_INTERVAL("beta", self.beta))
+        s(self, "delta", real("delta", self.delta, lo=-1.0, hi=1.0))
+        choice("preset", self.preset, OBSERVER_PRESETS)
+        s(self, "step_force", _FORCE("step_force", self.step_force))
+        s(self, "step_duration", _DURATION("step_duration", self.step_duration))
 
 # ----------------------------------------------------------------------------------------------
 # results

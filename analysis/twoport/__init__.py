@@ -13,6 +13,8 @@ from .llewellyn import (  # noqa: F401
     FORMS,
 )
 from .results import (  # noqa: F401
+    Progress,
+    Cancelled,
     TwoPort,
     BoundResult,
     StabilityResult,
@@ -44,6 +46,8 @@ __all__ = [
     "eta",
     "convert",
     "FORMS",
+    "Progress",
+    "Cancelled",
     "TwoPort",
     "BoundResult",
     "StabilityResult",

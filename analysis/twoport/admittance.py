@@ -25,8 +25,18 @@ from analysis.chain import grids
 from analysis.chain.response import chain_response
 from analysis.chain.discretize import check_frequencies, held_spring_damper, mass_damper_admittance
 from analysis.twoport.display_base import APPARENT_FREQUENCY, DisplayBase, safe_ratio
+from analysis.checks import nonnegative
 from analysis.errors import ValidationError
-from analysis.twoport.results import BoundResult, DampingInterval, MassChart, MassDesign, StabilityResult, TwoPort
+from analysis.twoport.results import (
+    BoundResult,
+    Cancelled,
+    DampingInterval,
+    MassChart,
+    MassDesign,
+    Progress,
+    StabilityResult,
+    TwoPort,
+)
 
 __all__ = ["AdmittanceDisplay", "re_coupling_impedance", "coupling_admittance"]
 
@@ -44,12 +54,6 @@ def re_coupling_impedance(w, sample_time: float, mc: float, bc: float) -> np.nda
     return y.real / (y.real ** 2 + y.imag ** 2)
 
 
-def _gain(name: str, value: float) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)) or not math.isfinite(value) or value < 0:
-        raise ValidationError(name, ">= 0 and finite", value)
-    return float(value)
-
-
 class AdmittanceDisplay(DisplayBase):
     """Admittance display: device chain + PD position loop + mass-damper coupling."""
 
@@ -57,8 +61,8 @@ class AdmittanceDisplay(DisplayBase):
 
     def __init__(self, device, kp: float, kd: float):
         super().__init__(device)
-        self.kp = _gain("kp", kp)
-        self.kd = _gain("kd", kd)
+        self.kp = nonnegative("kp", kp)
+        self.kd = nonnegative("kd", kd)
 
     def modes(self) -> np.ndarray:
         return grids.device_modes(self.device, actuator_stiffness=self.kp)
@@ -128,7 +132,7 @@ class AdmittanceDisplay(DisplayBase):
                             za.imag / omega, za.real, refine)
 
     # -- design ------------------------------------------------------------------------
-    def _limits(self, B: np.ndarray, w: np.ndarray, mc: float) -> tuple[np.ndarray, np.ndarray]:
+    def inverse_damping_limits(self, B: np.ndarray, w: np.ndarray, mc: float) -> tuple[np.ndarray, np.ndarray]:
         """Per-frequency interval ``[L, U]`` for ``u = 1/b_c`` from eq. (21).
 
         With ``t = u + T/(2 m_c)`` and ``g = T cot(theta)/(2 m_c)`` the condition is
@@ -162,14 +166,14 @@ class AdmittanceDisplay(DisplayBase):
             raise ValidationError("mc", "> 0 and finite (kg)", mc)
         w = self.frequencies() if w is None else check_frequencies(w, self.device.sample_time)
         B = self.bound(w)
-        L, U = self._limits(B, w, mc)
+        L, U = self.inverse_damping_limits(B, w, mc)
         lo, hi = grids.band_edges(self.device)
 
         def fu(x):
-            return self._limits(self._uncached_bound(x), x, mc)[1]
+            return self.inverse_damping_limits(self._uncached_bound(x), x, mc)[1]
 
         def fl(x):
-            return -self._limits(self._uncached_bound(x), x, mc)[0]
+            return -self.inverse_damping_limits(self._uncached_bound(x), x, mc)[0]
 
         uw, uv = grids.refine_minima(fu, w, U, lo, hi, candidates=8)
         lw, lv = grids.refine_minima(fl, w, -L, lo, hi, candidates=8)
@@ -190,7 +194,7 @@ class AdmittanceDisplay(DisplayBase):
                                high_frequency=f_lo if u_lo > 0 else math.nan)
 
     def _feasible_on(self, B: np.ndarray, w: np.ndarray, mc: float) -> bool:
-        L, U = self._limits(B, w, mc)
+        L, U = self.inverse_damping_limits(B, w, mc)
         return float(np.max(np.maximum(L, 0.0))) < float(np.min(U))
 
     def min_mass(self, w=None, rtol: float = 1e-10) -> MassDesign:
@@ -247,13 +251,22 @@ class AdmittanceDisplay(DisplayBase):
         bc = math.sqrt(interval.low * interval.high) if math.isfinite(interval.high) else interval.low
         return MassDesign(mc=mc, bc=bc, frequency=interval.low_frequency, interval=interval)
 
-    def mass_chart(self, mc_values, w=None) -> MassChart:
-        """Feasible b_c interval as a function of m_c (the design chart)."""
+    def mass_chart(self, mc_values, w=None, *, progress: Progress | None = None,
+                   cancelled: Cancelled | None = None) -> MassChart | None:
+        """Feasible b_c interval of eq. (21) as a function of m_c (the design chart).
+
+        ``progress(done, total)`` is called after each m_c; when ``cancelled()`` turns true
+        the chart stops and ``None`` is returned.
+        """
         mcs = np.asarray(mc_values, float)
         low = np.full(mcs.size, np.nan)
         high = np.full(mcs.size, np.nan)
         for i, mc in enumerate(mcs):
+            if cancelled is not None and cancelled():
+                return None
             d = self.feasible_damping(float(mc), w)
             if d.feasible:
                 low[i], high[i] = d.low, d.high
+            if progress is not None:
+                progress(i + 1, mcs.size)
         return MassChart(mc=mcs, low=low, high=high)

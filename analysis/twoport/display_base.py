@@ -96,8 +96,8 @@ class DisplayBase:
         br, tp = self._compute(w)
         return _no_nan(br), tp
 
-    def _bound_parts(self, w: np.ndarray) -> BoundResult:
-        """The bound with its parts, not cached (dense checks and refinement)."""
+    def bound_parts(self, w: np.ndarray) -> BoundResult:
+        """The bound of eq. (9) or (21) with its parts, not cached (dense checks and refinement)."""
         return self._compute_checked(np.asarray(w, float))[0]
 
     def _freq_grid(self, w: np.ndarray, key: bytes | None = None) -> FrequencyGrid:

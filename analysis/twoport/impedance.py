@@ -32,10 +32,16 @@ import math
 import numpy as np
 
 from analysis.chain import grids
-from analysis.chain.response import chain_response, frozen_impedances, handle_impedance, terminated_handle_impedance
+from analysis.chain.continued_fraction import (
+    frozen_impedances,
+    handle_impedance,
+    handle_impedance_at,
+    terminated_handle_impedance,
+)
+from analysis.chain.response import chain_response
 from analysis.chain.discretize import check_frequencies, spring_damper, theta_of
 from analysis.twoport.display_base import APPARENT_FREQUENCY, DisplayBase, FrequencyGrid, safe_ratio
-from analysis.twoport.results import BoundResult, StabilityResult, StiffnessChart, StiffnessDesign, TwoPort
+from analysis.twoport.results import BoundResult, Cancelled, Progress, StabilityResult, StiffnessChart, StiffnessDesign, TwoPort
 
 __all__ = ["ImpedanceDisplay", "coupling_impedance", "kc_upper"]
 
@@ -92,23 +98,6 @@ def kc_upper(bound: np.ndarray, w: np.ndarray, sample_time: float, bc: float) ->
         root = np.where(a1p <= 0, r_neg, r_pos)
         out[pos] = np.where(a0p > 0, -np.inf, root)
     return out
-
-
-def _handle_impedance_scalar(device, W: float) -> complex | None:
-    """:func:`analysis.chain.handle_impedance` at the single frequency ``s = j W``, in Python
-    complex arithmetic (same operations; no per-mass array overhead).  ``None`` on an exact
-    pole (division by zero)."""
-    m, g = device.masses.tolist(), device.ground_dampings.tolist()
-    b, k = device.dampings.tolist(), device.stiffnesses.tolist()
-    inv_w = 1.0 / W
-    R = complex(g[-1], m[-1] * W)
-    try:
-        for i in range(len(m) - 2, -1, -1):
-            e = complex(b[i], -k[i] * inv_w)
-            R = complex(g[i], m[i] * W) + e * R / (e + R)
-    except (ZeroDivisionError, OverflowError):
-        return None
-    return R
 
 
 class ImpedanceDisplay(DisplayBase):
@@ -186,7 +175,7 @@ class ImpedanceDisplay(DisplayBase):
         if self._apparent is None:
             T = self.device.sample_time
             W = float((2.0 / T) * np.tan(theta_of(np.array([APPARENT_FREQUENCY]), T))[0])
-            za = _handle_impedance_scalar(self.device, W)
+            za = handle_impedance_at(self.device, W)
             if za is None:  # exact pole of a lossless chain: numpy's inf/nan semantics
                 za = complex(handle_impedance(self.device, np.array([1j * W]))[0])
             self._apparent = (za, W)
@@ -256,13 +245,22 @@ class ImpedanceDisplay(DisplayBase):
         m = self.coupling_term(pts, kc, bc) - np.concatenate([B, self._compute_checked(rw)[0].bound])
         return StiffnessDesign(bc=bc, kc=kc, frequency=wmin, margin=float(np.min(m)), evaluations=evals)
 
-    def stiffness_chart(self, bc_values, w=None) -> StiffnessChart:
-        """Largest k_c as a function of b_c (the design chart)."""
+    def stiffness_chart(self, bc_values, w=None, *, progress: Progress | None = None,
+                        cancelled: Cancelled | None = None) -> StiffnessChart | None:
+        """Largest k_c satisfying eq. (9) as a function of b_c (the design chart).
+
+        ``progress(done, total)`` is called after each b_c; when ``cancelled()`` turns true
+        the chart stops and ``None`` is returned.
+        """
         bcs = np.asarray(bc_values, float)
-        kcs = np.empty(bcs.size)
-        fr = np.empty(bcs.size)
+        kcs = np.full(bcs.size, np.nan)
+        fr = np.full(bcs.size, np.nan)
         for i, bc in enumerate(bcs):
+            if cancelled is not None and cancelled():
+                return None
             d = self.max_stiffness(float(bc), w)
             kcs[i] = np.nan if d.kc is None else d.kc
             fr[i] = d.frequency
+            if progress is not None:
+                progress(i + 1, bcs.size)
         return StiffnessChart(bc=bcs, kc=kcs, frequency=fr)

@@ -2,11 +2,19 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
+#: ``progress(done, total)``: called by long computations after each step
+Progress = Callable[[int, int], None]
+#: ``cancelled() -> bool``: polled by long computations between steps; true stops them
+Cancelled = Callable[[], bool]
+
 __all__ = [
+    "Progress",
+    "Cancelled",
     "TwoPort",
     "BoundResult",
     "StabilityResult",

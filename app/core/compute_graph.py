@@ -4,12 +4,12 @@ Each :class:`Node` names the model fields it reads (``inputs``) and a ``key`` fu
 reduces the profile to exactly what the result depends on.  A model field change marks the nodes
 that read it dirty and emits :attr:`ComputeGraph.invalidated`; nothing is computed until a visible
 view *pulls* a node with :meth:`ComputeGraph.get` (synchronous) or :meth:`ComputeGraph.request`
-(asynchronous nodes run on the :class:`~app.worker.TaskRunner`).  A pull whose key equals the
+(asynchronous nodes run on the :class:`~app.core.worker.TaskRunner`).  A pull whose key equals the
 cached key returns the cached value, so ``calls`` counts real computations only.
 
-The device nodes (``impedance_display``, ``admittance_display``) build the analysis core's display
-objects, which cache the device two-port response per frequency vector; their keys exclude the
-coupling gains, so a gain change reuses them.
+This module is the scheduler only: the nodes themselves are registered by ``app.core.nodes_*``
+(:func:`app.core.nodes_stability.build_graph` builds the stability graph).  Callers use the public
+methods (:meth:`ComputeGraph.result`, :meth:`ComputeGraph.set_params`, ...), never a node's fields.
 """
 
 from __future__ import annotations
@@ -18,20 +18,20 @@ from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
 from PySide6.QtCore import QObject, Signal, Slot
 
-from analysis import AdmittanceDisplay, ImpedanceDisplay, StabilityResult
 from analysis.profiles.io import Profile
 
-from app.core.model import ALL_FIELDS, DEVICE_FIELDS, ProfileModel
+from app.core.model import ALL_FIELDS, ProfileModel
 from app.core.worker import TaskRunner
 
-__all__ = ["Node", "ComputeGraph", "build_graph", "ChartResult"]
+__all__ = ["Node", "ComputeGraph", "Pull", "Progress", "Cancelled"]
 
 _NOTHING = object()
 
 Pull = Callable[[str], Any]
+Progress = Callable[[int, int], None]
+Cancelled = Callable[[], bool]
 
 
 @dataclass(eq=False)
@@ -54,14 +54,6 @@ class Node:
     value_key: Any = _NOTHING
     dirty: bool = True
     pending_key: Any = _NOTHING
-
-
-@dataclass(frozen=True)
-class ChartResult:
-    """A design chart with the display type it belongs to."""
-
-    display: str
-    chart: Any  # StiffnessChart or MassChart
 
 
 class ComputeGraph(QObject):
@@ -98,13 +90,60 @@ class ComputeGraph(QObject):
         return node
 
     def node(self, name: str) -> Node:
+        """The node record, for inspection (change it through :meth:`set_params` and friends)."""
         return self._nodes[name]
 
     def calls(self, name: str) -> int:
+        """How often ``name`` was really computed (cache hits are not counted)."""
         return self._nodes[name].calls
 
     def names(self) -> list[str]:
         return list(self._nodes)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._nodes
+
+    # -- parameters and results (the public face of a node) ----------------------------------------
+    def params(self, name: str) -> dict:
+        """A copy of the node's parameters (view settings such as a grid, not profile fields)."""
+        return dict(self._nodes[name].params)
+
+    def set_params(self, name: str, **changes: Any) -> bool:
+        """Change some of the node's parameters; the node is dirty if any value changed.
+
+        Returns whether anything changed.  Nothing is computed: the next pull sees the new key.
+        """
+        node = self._nodes[name]
+        unknown = set(changes) - set(node.params)
+        if unknown:
+            raise KeyError(f"node {name!r} has no parameter(s) {sorted(unknown)}")
+        changed = {k: v for k, v in changes.items() if node.params.get(k) != v}
+        if not changed:
+            return False
+        node.params.update(changed)
+        node.dirty = True
+        return True
+
+    def set_param(self, name: str, key: str, value: Any) -> bool:
+        """One parameter of :meth:`set_params`."""
+        return self.set_params(name, **{key: value})
+
+    def result(self, name: str) -> Any:
+        """The last computed value of ``name`` (possibly stale; ``None`` before the first) -- no pull."""
+        return self._nodes[name].value
+
+    def function(self, name: str) -> Callable[..., Any]:
+        """The function computing ``name``."""
+        return self._nodes[name].func
+
+    def replace_function(self, name: str, func: Callable[..., Any]) -> Callable[..., Any]:
+        """Compute ``name`` with ``func`` from its next computation on (instrumentation, tests).
+
+        The cached value stays valid until the node's key changes.  Returns the old function.
+        """
+        node = self._nodes[name]
+        old, node.func = node.func, func
+        return old
 
     # -- interaction ----------------------------------------------------------------------------
     @property
@@ -227,107 +266,4 @@ class ComputeGraph(QObject):
         if name in self._nodes:
             self.cancelled.emit(name)
 
-
-# -- the nodes of the stability analysis ---------------------------------------------------------
-
-GAIN_FIELDS = frozenset({"display", "kc", "bc", "mc", "bc_adm", "kp", "kd"})
-_DEVICE = frozenset(DEVICE_FIELDS)
-
-
-def _impedance_display(profile: Profile, pull: Pull) -> ImpedanceDisplay:
-    imp = ImpedanceDisplay(profile.device)
-    imp.bound_result(imp.frequencies())  # the device two-port response on the grid
-    return imp
-
-
-def _admittance_display(profile: Profile, pull: Pull) -> AdmittanceDisplay:
-    adm = AdmittanceDisplay(profile.device, profile.kp, profile.kd)
-    adm.bound_result(adm.frequencies())
-    return adm
-
-
-def _stability_key(p: Profile, params: dict) -> Hashable:
-    if p.display == "impedance":
-        return ("impedance", p.device.key(), p.kc, p.bc)
-    return ("admittance", p.device.key(), p.kp, p.kd, p.mc, p.bc_adm)
-
-
-def _stability(profile: Profile, pull: Pull) -> StabilityResult:
-    if profile.display == "impedance":
-        return pull("impedance_display").evaluate(profile.kc, profile.bc)
-    return pull("admittance_display").evaluate(profile.mc, profile.bc_adm)
-
-
-def _stability_preview(profile: Profile, pull: Pull) -> StabilityResult:
-    if profile.display == "impedance":
-        return pull("impedance_display").evaluate(profile.kc, profile.bc, refine=False)
-    return pull("admittance_display").evaluate(profile.mc, profile.bc_adm, refine=False)
-
-
-def _max_stiffness(profile: Profile, pull: Pull) -> Any:
-    return pull("impedance_display").max_stiffness(profile.bc)
-
-
-def _chart_key(p: Profile, params: dict) -> Hashable:
-    grid = (params["bc_range"], params["mc_range"], params["points"])
-    if p.display == "impedance":
-        return ("impedance", p.device.key(), grid)
-    return ("admittance", p.device.key(), p.kp, p.kd, grid)
-
-
-def _design_chart(profile: Profile, params: dict, progress: Callable[[int, int], None],
-                  cancelled: Callable[[], bool]) -> ChartResult | None:
-    """The design chart, one grid value at a time so that it can report and stop.
-
-    Builds its own display object: the GUI thread's cached one is never shared across threads.
-    """
-    n = int(params["points"])
-    if profile.display == "impedance":
-        imp = ImpedanceDisplay(profile.device)
-        bcs = np.geomspace(*params["bc_range"], n)
-        kcs, fr = np.full(n, np.nan), np.full(n, np.nan)
-        for i, bc in enumerate(bcs):
-            if cancelled():
-                return None
-            d = imp.max_stiffness(float(bc))
-            kcs[i] = np.nan if d.kc is None else d.kc
-            fr[i] = d.frequency
-            progress(i + 1, n)
-        from analysis import StiffnessChart
-
-        return ChartResult("impedance", StiffnessChart(bc=bcs, kc=kcs, frequency=fr))
-    adm = AdmittanceDisplay(profile.device, profile.kp, profile.kd)
-    mcs = np.geomspace(*params["mc_range"], n)
-    low, high = np.full(n, np.nan), np.full(n, np.nan)
-    for i, mc in enumerate(mcs):
-        if cancelled():
-            return None
-        d = adm.feasible_damping(float(mc))
-        if d.feasible:
-            low[i], high[i] = d.low, d.high
-        progress(i + 1, n)
-    from analysis import MassChart
-
-    return ChartResult("admittance", MassChart(mc=mcs, low=low, high=high))
-
-
-def _min_mass(profile: Profile, params: dict, progress: Callable[[int, int], None],
-              cancelled: Callable[[], bool]) -> Any:
-    return AdmittanceDisplay(profile.device, profile.kp, profile.kd).min_mass()
-
-
-def build_graph(model: ProfileModel, runner: TaskRunner, chart_points: int = 40) -> ComputeGraph:
-    """The graph of the stability analysis (tabs may add their own nodes)."""
-    g = ComputeGraph(model, runner)
-    g.add(Node("impedance_display", _DEVICE, lambda p, _: p.device.key(), _impedance_display))
-    g.add(Node("admittance_display", _DEVICE | {"kp", "kd"}, lambda p, _: (p.device.key(), p.kp, p.kd),
-               _admittance_display))
-    g.add(Node("stability", _DEVICE | GAIN_FIELDS, _stability_key, _stability))
-    g.add(Node("stability_preview", _DEVICE | GAIN_FIELDS, _stability_key, _stability_preview))
-    g.add(Node("max_stiffness", _DEVICE | {"bc"}, lambda p, _: (p.device.key(), p.bc), _max_stiffness))
-    g.add(Node("design_chart", _DEVICE | {"display", "kp", "kd"}, _chart_key, _design_chart, asynchronous=True,
-               params={"bc_range": (1.0, 1e4), "mc_range": (1e-3, 1e3), "points": chart_points}))
-    g.add(Node("min_mass", _DEVICE | {"kp", "kd"}, lambda p, _: (p.device.key(), p.kp, p.kd), _min_mass,
-               asynchronous=True))
-    return g
 

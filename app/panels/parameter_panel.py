@@ -6,6 +6,8 @@ from PySide6.QtCore import Qt, Slot
 from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QGroupBox, QLabel, QScrollArea, QToolButton, QVBoxLayout, QWidget
 
+from analysis.study import display_kind
+
 from app.core.commands import Editor
 from app.core.model import ProfileModel
 from app.panels.chain_editor import ChainEditor
@@ -16,6 +18,8 @@ __all__ = ["ParameterPanel"]
 
 
 class ParameterPanel(QScrollArea):
+    """Display type, coupling and PD gains, sampling and band, and the device chain; ``fields`` by name."""
+
     def __init__(self, model: ProfileModel, editor: Editor, maximize_kc: QAction, minimize_mc: QAction,
                  parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -26,42 +30,14 @@ class ParameterPanel(QScrollArea):
         lay = QVBoxLayout(body)
         lay.setContentsMargins(8, 8, 8, 8)
         lay.setSpacing(8)
+        self._editor = editor
         self.fields: dict[str, LogSliderField] = {}
-
-        def field(name: str, label: str, unit: str, lo: float, hi: float, zero: bool, tip: str) -> LogSliderField:
-            f = LogSliderField(model, (name,), lambda m: float(m.get(name)), lambda v, d: editor.edit(name, v, d),
-                               editor, label, unit, lo, hi, allow_zero=zero, tooltip=tip)
-            f.setObjectName(name)
-            self.fields[name] = f
-            return f
-
+        field = self._field
         self.title = QLabel()
         self.title.setWordWrap(True)
         self.title.setStyleSheet("font-size: 14px; font-weight: 600;")
         lay.addWidget(self.title)
-
-        box = QGroupBox("Display and virtual coupling")
-        g = QVBoxLayout(box)
-        g.addWidget(DisplaySelector(model, editor))
-        self.impedance_box = QWidget()
-        gi = QVBoxLayout(self.impedance_box)
-        gi.setContentsMargins(0, 0, 0, 0)
-        gi.addWidget(field("kc", "k<sub>c</sub>", "N/m", 10.0, 1e7, True, "Coupling stiffness (eq. 4)"))
-        gi.addWidget(field("bc", "b<sub>c</sub>", "N·s/m", 1e-2, 1e5, True, "Coupling damping (eq. 4)"))
-        self.maximize_button = QToolButton()
-        self.maximize_button.setDefaultAction(maximize_kc)
-        gi.addWidget(self.maximize_button, 0, Qt.AlignmentFlag.AlignRight)
-        self.admittance_box = QWidget()
-        ga = QVBoxLayout(self.admittance_box)
-        ga.setContentsMargins(0, 0, 0, 0)
-        ga.addWidget(field("mc", "m<sub>c</sub>", "kg", 1e-3, 1e3, False, "Coupling mass (eq. 16)"))
-        ga.addWidget(field("bc_adm", "b<sub>c</sub>", "N·s/m", 1e-1, 1e5, False, "Coupling damping (eq. 16)"))
-        self.minimize_button = QToolButton()
-        self.minimize_button.setDefaultAction(minimize_mc)
-        ga.addWidget(self.minimize_button, 0, Qt.AlignmentFlag.AlignRight)
-        g.addWidget(self.impedance_box)
-        g.addWidget(self.admittance_box)
-        lay.addWidget(box)
+        lay.addWidget(self._coupling_box(maximize_kc, minimize_mc))
 
         self.pd_box = QGroupBox("PD position loop (admittance display, eq. 30)")
         gp = QVBoxLayout(self.pd_box)
@@ -89,6 +65,41 @@ class ParameterPanel(QScrollArea):
         model.profileReplaced.connect(self.refresh)
         self.refresh()
 
+    def _field(self, name: str, label: str, unit: str, lo: float, hi: float, zero: bool, tip: str) -> LogSliderField:
+        """A slider field bound to the model field ``name`` (edits through the editor, one undo step)."""
+        ed = self._editor
+        f = LogSliderField(self._model, (name,), lambda m: float(m.get(name)), lambda v, d: ed.edit(name, v, d),
+                           ed, label, unit, lo, hi, allow_zero=zero, tooltip=tip)
+        f.setObjectName(name)
+        self.fields[name] = f
+        return f
+
+    def _coupling_box(self, maximize_kc: QAction, minimize_mc: QAction) -> QGroupBox:
+        """The display type and the coupling gains of each display (with its design action)."""
+        field, model, editor = self._field, self._model, self._editor
+        box = QGroupBox("Display and virtual coupling")
+        g = QVBoxLayout(box)
+        g.addWidget(DisplaySelector(model, editor))
+        self.impedance_box = QWidget()
+        gi = QVBoxLayout(self.impedance_box)
+        gi.setContentsMargins(0, 0, 0, 0)
+        gi.addWidget(field("kc", "k<sub>c</sub>", "N/m", 10.0, 1e7, True, "Coupling stiffness (eq. 4)"))
+        gi.addWidget(field("bc", "b<sub>c</sub>", "N·s/m", 1e-2, 1e5, True, "Coupling damping (eq. 4)"))
+        self.maximize_button = QToolButton()
+        self.maximize_button.setDefaultAction(maximize_kc)
+        gi.addWidget(self.maximize_button, 0, Qt.AlignmentFlag.AlignRight)
+        self.admittance_box = QWidget()
+        ga = QVBoxLayout(self.admittance_box)
+        ga.setContentsMargins(0, 0, 0, 0)
+        ga.addWidget(field("mc", "m<sub>c</sub>", "kg", 1e-3, 1e3, False, "Coupling mass (eq. 16)"))
+        ga.addWidget(field("bc_adm", "b<sub>c</sub>", "N·s/m", 1e-1, 1e5, False, "Coupling damping (eq. 16)"))
+        self.minimize_button = QToolButton()
+        self.minimize_button.setDefaultAction(minimize_mc)
+        ga.addWidget(self.minimize_button, 0, Qt.AlignmentFlag.AlignRight)
+        g.addWidget(self.impedance_box)
+        g.addWidget(self.admittance_box)
+        return box
+
     @Slot(str)
     def _on_field(self, field: str) -> None:
         if field in ("display", "name"):
@@ -99,7 +110,7 @@ class ParameterPanel(QScrollArea):
         p = self._model.profile
         self.title.setText(p.name or "Untitled profile")
         self.title.setToolTip(p.notes)
-        imp = p.display == "impedance"
+        imp = display_kind(p).is_impedance
         self.impedance_box.setVisible(imp)
         self.admittance_box.setVisible(not imp)
         self.pd_box.setVisible(not imp)

@@ -28,14 +28,15 @@ from PySide6.QtWidgets import (
 
 from analysis import ValidationError
 from analysis.profiles.sections import SimulationSection
-from analysis.profiles.io import Profile
 from analysis.sampled import CLAMPED, FIRM_GRASP, HANDS_OFF, RIGID_GRASP, SCENARIOS, SimulationOptions, hbfd_options
 from analysis.sampled import scenario as preset
 
 from app.core.commands import Editor, describe_error
 from app.core.model import ProfileModel
+from app.core.nodes_sampled import current_section
 
-__all__ = ["SimulationPanel", "default_section", "current_section", "GRASPS", "SCENARIO_TITLES"]
+__all__ = ["SimulationPanel", "current_section", "GRASPS", "SCENARIO_TITLES", "with_options", "with_scenario",
+           "hbfd_section", "ideal_section"]
 
 GRASPS = {"hands-off": HANDS_OFF, "firm grasp": FIRM_GRASP, "rigid grasp": RIGID_GRASP, "clamped": CLAMPED}
 SCENARIO_TITLES = {
@@ -52,22 +53,42 @@ SCENARIO_TIPS = {
 }
 
 
-def default_section(display: str) -> SimulationSection:
-    """Ideal sensors and actuator, no delay, and the paper's worst case for ``display``."""
-    name = "impedance_worst_case" if display == "impedance" else "admittance_worst_case"
-    return SimulationSection(options=SimulationOptions(), scenario=preset(name))
-
-
-def current_section(profile: Profile) -> SimulationSection:
-    return profile.simulation if profile.simulation is not None else default_section(profile.display)
-
-
 def _fmt(x: float) -> str:
     return "inf" if math.isinf(x) else f"{x:.6g}"
 
 
 def _parse_float(text: str) -> float:
     return float(text.strip().replace("∞", "inf"))
+
+
+def with_options(s: SimulationSection, **changes: object) -> SimulationSection:
+    """``s`` with some simulator options changed (validated by ``SimulationOptions``)."""
+    return SimulationSection(options=dataclasses.replace(s.options, **changes), scenario=s.scenario)
+
+
+def with_scenario(s: SimulationSection, **changes: object) -> SimulationSection:
+    """``s`` with some scenario fields changed; a changed preset is renamed ``custom``."""
+    sc = s.scenario.replace(**changes)
+    if sc != SCENARIOS.get(sc.name):
+        sc = sc.replace(name="custom")
+    return SimulationSection(options=s.options, scenario=sc)
+
+
+def hbfd_section(s: SimulationSection, masses: int) -> SimulationSection:
+    """The HBFD's sensors, actuator and friction (friction dropped unless one value per mass); keeps the delays."""
+    o = s.options
+    base = hbfd_options(delay_samples=o.delay_samples, implementation_delay=o.implementation_delay)
+    if len(base.friction) != masses:
+        base = dataclasses.replace(base, friction=())
+    return SimulationSection(options=base, scenario=s.scenario)
+
+
+def ideal_section(s: SimulationSection) -> SimulationSection:
+    """Ideal sensors and actuator; keeps the delays."""
+    o = s.options
+    return SimulationSection(options=SimulationOptions(delay_samples=o.delay_samples,
+                                                       implementation_delay=o.implementation_delay),
+                             scenario=s.scenario)
 
 
 class _Field(QLineEdit):
@@ -88,8 +109,20 @@ class SimulationPanel(QWidget):
         self.error.setWordWrap(True)
         self.error.setStyleSheet("color: #c92a2a;")
         self.error.hide()
+        self.fields: dict[str, _Field] = {}
+        lay = QVBoxLayout(self)
+        lay.setContentsMargins(0, 0, 0, 0)
+        for box in (self._loop_box(), self._scenario_box(), self._effects_box()):
+            lay.addWidget(box)
+        lay.addWidget(self.error)
+        model.fieldChanged.connect(self._on_field)
+        model.profileReplaced.connect(self.sync)
+        editor.refused.connect(self._on_refused)
+        self.sync()
 
-        # -- loop ------------------------------------------------------------------------------
+    # -- construction ----------------------------------------------------------------------------
+    def _loop_box(self) -> QGroupBox:
+        """The computation and implementation delays."""
         self.delay = QSpinBox()
         self.delay.setRange(0, 1000)
         self.delay.setSuffix(" sample(s) of T")
@@ -103,8 +136,10 @@ class SimulationPanel(QWidget):
         lf = QFormLayout(loop)
         lf.addRow("Computation delay", self.delay)
         lf.addRow(self.impl)
+        return loop
 
-        # -- scenario --------------------------------------------------------------------------
+    def _scenario_box(self) -> QGroupBox:
+        """The scenario preset, environment, grasp and push."""
         self.preset = QComboBox()
         for name in SCENARIOS:
             self.preset.addItem(SCENARIO_TITLES.get(name, name), name)
@@ -123,7 +158,6 @@ class SimulationPanel(QWidget):
             self.grasp.addItem(name, name)
         self.grasp.activated.connect(
             lambda _i: self._edit_scenario("grasp", grasp=GRASPS[self.grasp.currentData()]))
-        self.fields: dict[str, _Field] = {}
         sc = QGroupBox("Scenario")
         sf = QFormLayout(sc)
         sf.addRow("Preset", self.preset)
@@ -135,8 +169,10 @@ class SimulationPanel(QWidget):
         sf.addRow("Push force [N]", self._scenario_field("push_force", "Force of the human on the handle"))
         sf.addRow("Release time [s]", self._scenario_field("release_time", "Grasp and push removed (inf: never)"))
         sf.addRow("Duration [s]", self._scenario_field("duration", "Simulated time (at most 3600 s)"))
+        return sc
 
-        # -- nonlinear effects --------------------------------------------------------------------
+    def _effects_box(self) -> QGroupBox:
+        """Quantization, friction and saturation of the simulator."""
         nl = QGroupBox("Nonlinear effects (simulation only)")
         nf = QFormLayout(nl)
         nf.addRow("Encoder resolution [m]", self._option_field("encoder_resolution", "0 = ideal encoder"))
@@ -164,30 +200,19 @@ class SimulationPanel(QWidget):
         row.addWidget(self.hbfd_button)
         row.addWidget(self.ideal_button)
         nf.addRow(row)
+        return nl
 
-        lay = QVBoxLayout(self)
-        lay.setContentsMargins(0, 0, 0, 0)
-        lay.addWidget(loop)
-        lay.addWidget(sc)
-        lay.addWidget(nl)
-        lay.addWidget(self.error)
-        model.fieldChanged.connect(self._on_field)
-        model.profileReplaced.connect(self.sync)
-        editor.refused.connect(self._on_refused)
-        self.sync()
-
-    # -- construction helpers ---------------------------------------------------------------------
-    def _scenario_field(self, attr: str, tip: str) -> _Field:
+    def _number_field(self, attr: str, tip: str, scenario: bool) -> _Field:
         f = _Field(tip)
-        f.editingFinished.connect(lambda: self._edit_number(f, attr, scenario=True))
+        f.editingFinished.connect(lambda: self._edit_number(f, attr, scenario=scenario))
         self.fields[attr] = f
         return f
+
+    def _scenario_field(self, attr: str, tip: str) -> _Field:
+        return self._number_field(attr, tip, True)
 
     def _option_field(self, attr: str, tip: str) -> _Field:
-        f = _Field(tip)
-        f.editingFinished.connect(lambda: self._edit_number(f, attr, scenario=False))
-        self.fields[attr] = f
-        return f
+        return self._number_field(attr, tip, False)
 
     # -- state ------------------------------------------------------------------------------------
     def section(self) -> SimulationSection:
@@ -255,20 +280,11 @@ class SimulationPanel(QWidget):
             self.sync()
         return reason
 
-    def _edit_options(self, label: str, **changes) -> str | None:
-        def build(s: SimulationSection) -> SimulationSection:
-            return SimulationSection(options=dataclasses.replace(s.options, **changes), scenario=s.scenario)
+    def _edit_options(self, label: str, **changes: object) -> str | None:
+        return self._push(lambda s: with_options(s, **changes), label)
 
-        return self._push(build, label)
-
-    def _edit_scenario(self, label: str, **changes) -> str | None:
-        def build(s: SimulationSection) -> SimulationSection:
-            sc = s.scenario.replace(**changes)
-            if sc != SCENARIOS.get(sc.name):
-                sc = sc.replace(name="custom")
-            return SimulationSection(options=s.options, scenario=sc)
-
-        return self._push(build, label)
+    def _edit_scenario(self, label: str, **changes: object) -> str | None:
+        return self._push(lambda s: with_scenario(s, **changes), label)
 
     def _edit_number(self, field: _Field, attr: str, scenario: bool) -> None:
         if self._syncing or not field.isModified():
@@ -315,23 +331,9 @@ class SimulationPanel(QWidget):
 
     @Slot()
     def _on_hbfd(self) -> None:
-        def build(s: SimulationSection) -> SimulationSection:
-            o = s.options
-            n = self.model.device.n
-            base = hbfd_options(delay_samples=o.delay_samples, implementation_delay=o.implementation_delay)
-            if len(base.friction) != n:
-                base = dataclasses.replace(base, friction=())
-            return SimulationSection(options=base, scenario=s.scenario)
-
-        self._push(build, "HBFD nonlinear effects")
+        self._push(lambda s: hbfd_section(s, self.model.device.n), "HBFD nonlinear effects")
 
     @Slot()
     def _on_ideal(self) -> None:
-        def build(s: SimulationSection) -> SimulationSection:
-            o = s.options
-            return SimulationSection(options=SimulationOptions(delay_samples=o.delay_samples,
-                                                               implementation_delay=o.implementation_delay),
-                                     scenario=s.scenario)
-
-        self._push(build, "ideal sensors and actuator")
+        self._push(ideal_section, "ideal sensors and actuator")
 

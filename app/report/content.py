@@ -16,15 +16,24 @@ from typing import Any
 
 import numpy as np
 
-from analysis import AdmittanceDisplay, ImpedanceDisplay
 from analysis.profiles.io import Profile
-from analysis.study.summary import summarize
+from analysis.study import (
+    HEADLINE_KEYS,
+    Headline,
+    design_chart,
+    designs,
+    display_kind,
+    format_number,
+    map_params,
+    map_point,
+    simulation,
+    simulation_section,
+    stability_map,
+)
 
 __all__ = ["ReportContent", "Section", "Row", "ReportCancelled", "gather", "num", "app_version", "METHODS"]
 
 DIGITS = 6
-CHART_POINTS = 40
-MAP_POINTS = 31
 
 
 class ReportCancelled(Exception):
@@ -32,17 +41,9 @@ class ReportCancelled(Exception):
 
 
 def num(x: Any, digits: int = DIGITS) -> str:
-    """A number as the report prints it (``inf`` -> ``unbounded``, ``None`` -> ``infeasible``)."""
-    if x is None:
-        return "infeasible"
-    if isinstance(x, (bool, np.bool_)):
-        return "yes" if x else "no"
-    x = float(x)
-    if math.isnan(x):
-        return "n/a"
-    if math.isinf(x):
-        return "unbounded" if x > 0 else "-unbounded"
-    return f"{x:.{digits}g}"
+    """A number as the report prints it (``inf`` -> ``unbounded``, ``None`` -> ``infeasible``):
+    :func:`analysis.study.format_number`, the rule the CLI and the GUI use too."""
+    return format_number(x, digits)
 
 
 def app_version() -> str:
@@ -82,7 +83,7 @@ class ReportContent:
     sections: tuple[Section, ...]
     methods: tuple[str, ...]
     numbers: dict[str, tuple[float | None, str]]
-    summary: dict[str, Any]
+    headline: Headline
     results: dict[str, Any] = field(default_factory=dict)
 
     def printed(self, key: str) -> str:
@@ -146,32 +147,18 @@ def _device_rows(profile: Profile, numbers: dict) -> tuple[Row, ...]:
     return tuple(rows)
 
 
-def _sampled(profile: Profile, res: dict, numbers: dict, design_kc: float | None) -> Section | None:
-    sim = profile.simulation
-    if sim is None:
+def _sampled(profile: Profile, res: dict, numbers: dict) -> Section | None:
+    """The app's sampled-data stability map (:func:`analysis.study.stability_map`, its default
+    axes and ranges for the display) and the profile's scenario."""
+    if profile.simulation is None:
         return None
-    from analysis import sampled
-
-    opt = sim.options
-    delay = dict(delay_samples=opt.delay_samples, implementation_delay=opt.implementation_delay)
-    if profile.display == "impedance":
-        bc0 = profile.bc if profile.bc > 0 else 100.0
-        kc0 = profile.kc if profile.kc > 0 else (design_kc or 1e4)
-        xs = np.geomspace(bc0 / 100, bc0 * 100, MAP_POINTS)
-        ys = np.geomspace(kc0 / 100, kc0 * 100, MAP_POINTS)
-        smap = sampled.stability_map(profile.device, ("bc", xs), ("kc", ys), display="impedance",
-                                     coupling=(profile.kc, profile.bc), pd=(profile.kp, profile.kd), **delay)
-        point = (profile.bc, profile.kc)
-    else:
-        xs = np.geomspace(profile.mc / 100, profile.mc * 100, MAP_POINTS)
-        ys = np.geomspace(profile.bc_adm / 100, profile.bc_adm * 100, MAP_POINTS)
-        smap = sampled.stability_map(profile.device, ("mc", xs), ("bc", ys), display="admittance",
-                                     coupling=(profile.mc, profile.bc_adm), pd=(profile.kp, profile.kd), **delay)
-        point = (profile.mc, profile.bc_adm)
+    params = map_params(profile)
+    smap = stability_map(profile, params)
     res["map"] = smap
-    res["map_point"] = point
-    sc = sim.scenario
-    out = sampled.simulate(profile, sc, options=opt)
+    res["map_point"] = map_point(profile, params["x"], params["y"])
+    sec = simulation_section(profile)
+    opt, sc = sec.options, sec.scenario
+    out = simulation(profile)
     res["simulation"] = out
     stable_share = float(np.mean(smap.spectral_radius <= 1.0))
     rows = (
@@ -185,10 +172,11 @@ def _sampled(profile: Profile, res: dict, numbers: dict, design_kc: float | None
         Row("delay", "", str(opt.delay_samples), "sample(s)" + (", plus computation delay"
                                                             if opt.implementation_delay else "")),
     )
+    n = params["points"]
     return Section("Sampled-data checks", (
-        "The exact sampled loop (zero-order hold, the profile's delays) on a coarse "
-        f"{MAP_POINTS}&times;{MAP_POINTS} grid around the current coupling, and the profile's scenario "
-        "simulated in the time domain.",), rows)
+        "The exact sampled loop (zero-order hold, the profile's delays) on the app's "
+        f"{n}&times;{n} stability map ({html.escape(params['x'])} &times; {html.escape(params['y'])}), and the "
+        "profile's scenario simulated in the time domain.",), rows)
 
 
 def _wall(profile: Profile, res: dict, numbers: dict) -> Section | None:
@@ -221,115 +209,93 @@ def _wall(profile: Profile, res: dict, numbers: dict) -> Section | None:
     return Section("Transparency and robust stability (Eom, Suh &amp; Yi)", (), rows, after)
 
 
+#: report number keys and HTML symbols of the headline quantities (labels and units: the study's)
+_VERDICT_ROWS = {
+    "stable": ("verdict.stable", ""), "stability_reserve": ("verdict.relative_margin", ""),
+    "binding_frequency": ("verdict.binding_frequency", ""), "worst_margin": ("verdict.worst_margin", ""),
+    "worst_frequency": ("verdict.worst_frequency", ""), "min_eta": ("verdict.min_eta", "&eta;<sub>min</sub>"),
+}
+_RANGE_ROWS = {
+    "k_max": ("range.k_max", "<i>k</i><sub>max</sub>"), "b_min": ("range.b_min", "<i>b</i><sub>min</sub>"),
+    "apparent_mass": ("range.apparent_mass", ""), "apparent_damping": ("range.apparent_damping", ""),
+}
+_DESIGN_ROWS = {
+    "bc": ("design.bc", "<i>b</i><sub>c</sub>"), "kc_max": ("design.kc_max", "<i>k</i><sub>c,max</sub>"),
+    "kc_max_frequency": ("design.frequency", ""), "mc": ("design.mc", "<i>m</i><sub>c</sub>"),
+    "bc_low": ("design.bc_low", "<i>b</i><sub>c,low</sub>"), "bc_low_frequency": ("design.low_frequency", ""),
+    "bc_high": ("design.bc_high", "<i>b</i><sub>c,high</sub>"), "bc_high_frequency": ("design.high_frequency", ""),
+    "min_mc": ("design.min_mc", "<i>m</i><sub>c,min</sub>"), "min_mc_bc": ("design.min_mc_bc", "<i>b</i><sub>c</sub>"),
+    "min_mc_frequency": ("design.min_mc_frequency", ""),
+}
+
+
+def _headline_rows(h: Headline, numbers: dict, table: dict[str, tuple[str, str]],
+                   keys: tuple[str, ...]) -> tuple[Row, ...]:
+    """Rows of headline quantities, printed by :meth:`analysis.study.Quantity.number`."""
+    rows = []
+    for key in keys:
+        if key not in table:
+            continue
+        q, value = h.quantity(key), h.value(key)
+        text = q.number(value)
+        numbers[table[key][0]] = (None if value is None else float(value), text)
+        rows.append(Row(q.name, table[key][1], text, html.escape(q.unit)))
+    return tuple(rows)
+
+
+def _controller(profile: Profile, numbers: dict) -> Section:
+    kind = display_kind(profile)
+    rows = [Row("display type", "", kind.name, f"({kind.causality})")]
+    for gain in kind.gains:
+        sym = f"<i>{gain.symbol[0]}</i><sub>{gain.symbol[2:]}</sub>"
+        rows.append(_row(numbers, f"coupling.{gain.symbol.replace('_', '')}", gain.label, sym,
+                         getattr(profile, gain.field), html.escape(gain.unit)))
+    rows += [
+        _row(numbers, "pd.kp", "PD position-loop stiffness", "<i>k</i><sub>p</sub>", profile.kp, "N/m"),
+        _row(numbers, "pd.kd", "PD position-loop damping", "<i>k</i><sub>d</sub>", profile.kd, "N&middot;s/m"),
+    ]
+    after = ("The PD gains act only in the admittance display (eq. 30).",) if kind.is_impedance else ()
+    return Section("Display and controller", (), tuple(rows), after)
+
+
+def _verdict(h: Headline, profile: Profile, numbers: dict) -> Section:
+    dev = profile.device
+    verdict_text = "<b>Unconditionally stable</b>" if h.stable else "<b>NOT unconditionally stable</b>"
+    rows = _headline_rows(h, numbers, _VERDICT_ROWS, HEADLINE_KEYS)
+    return Section("Verdict", (
+        f"{verdict_text} (eq. {h.kind.bound_equation}) for every passive operator and environment, over the band "
+        f"[{num(dev.band_min)}, {num(dev.nyquist)}) rad/s.",), rows)
+
+
+def _designs(h: Headline, numbers: dict) -> Section:
+    eq = f"eq. {h.kind.bound_equation}"
+    if h.kind.is_impedance:
+        par = f"Largest k<sub>c</sub> satisfying {eq} at the profile's b<sub>c</sub> (design chart below)."
+    else:
+        par = f"Couplings (m<sub>c</sub>, b<sub>c</sub>) satisfying {eq} (design chart below)."
+    return Section("Design results", (par,), _headline_rows(h, numbers, _DESIGN_ROWS, h.kind.design_keys))
+
+
 def gather(profile: Profile, *, source: str | None = None, sampled: bool = True,
            date: str | None = None) -> ReportContent:
-    """All numbers and results of one report."""
+    """All numbers and results of one report, from :mod:`analysis.study` (no computation here)."""
     numbers: dict[str, tuple[float | None, str]] = {}
-    res: dict[str, Any] = {}
+    kind = display_kind(profile)
+    disp = kind.build(profile)
+    stab = kind.evaluate(profile, disp)
+    h = Headline.from_result(stab, designs(profile, kind, disp))
+    res: dict[str, Any] = {"stability": stab, "chart": design_chart(profile), "chart_point": kind.chart_point(profile)}
     dev = profile.device
-    summary = summarize(profile)
-    imp_disp = profile.display == "impedance"
-
-    if imp_disp:
-        disp = ImpedanceDisplay(dev)
-        stab = disp.evaluate(profile.kc, profile.bc)
-        bcs = np.geomspace(1.0, 1e4, CHART_POINTS)
-        res["chart"] = ("impedance", disp.stiffness_chart(bcs))
-        res["chart_point"] = (profile.bc, profile.kc)
-    else:
-        disp = AdmittanceDisplay(dev, profile.kp, profile.kd)
-        stab = disp.evaluate(profile.mc, profile.bc_adm)
-        mcs = np.geomspace(1e-3, 1e3, CHART_POINTS)
-        res["chart"] = ("admittance", disp.mass_chart(mcs))
-        res["chart_point"] = (profile.mc, profile.bc_adm)
-    res["stability"] = stab
-
     sampling = Section("Sampling and analysis band", (), (
         _row(numbers, "sample_time", "sample period", "<i>T</i>", dev.sample_time, "s"),
         _row(numbers, "band.min", "lowest analysed frequency", "&omega;<sub>min</sub>", dev.band_min, "rad/s"),
         _row(numbers, "band.max", "Nyquist frequency &pi;/<i>T</i>", "&omega;<sub>N</sub>", dev.nyquist, "rad/s"),
     ))
-    if imp_disp:
-        ctrl_rows = (
-            Row("display type", "", "impedance", "(force out, position in)"),
-            _row(numbers, "coupling.kc", "coupling stiffness", "<i>k</i><sub>c</sub>", profile.kc, "N/m"),
-            _row(numbers, "coupling.bc", "coupling damping", "<i>b</i><sub>c</sub>", profile.bc, "N&middot;s/m"),
-        )
-    else:
-        ctrl_rows = (
-            Row("display type", "", "admittance", "(position out, force in)"),
-            _row(numbers, "coupling.mc", "coupling mass", "<i>m</i><sub>c</sub>", profile.mc, "kg"),
-            _row(numbers, "coupling.bc", "coupling damping", "<i>b</i><sub>c</sub>", profile.bc_adm, "N&middot;s/m"),
-        )
-    ctrl_rows += (
-        _row(numbers, "pd.kp", "PD position-loop stiffness", "<i>k</i><sub>p</sub>", profile.kp, "N/m"),
-        _row(numbers, "pd.kd", "PD position-loop damping", "<i>k</i><sub>d</sub>", profile.kd, "N&middot;s/m"),
-    )
-    controller = Section("Display and controller", (), ctrl_rows,
-                         ("The PD gains act only in the admittance display (eq. 30).",) if imp_disp else ())
-
-    eq = "eq. 9" if imp_disp else "eq. 21"
-    margin_unit = "m/(N&middot;s)" if imp_disp else "N&middot;s/m"
-    verdict_text = ("<b>Unconditionally stable</b>" if stab.stable else "<b>NOT unconditionally stable</b>")
-    verdict = Section("Verdict", (
-        f"{verdict_text} ({eq}) for every passive operator and environment, over the band "
-        f"[{num(dev.band_min)}, {num(dev.nyquist)}) rad/s.",), (
-        _row(numbers, "verdict.stable", "unconditionally stable", "", bool(stab.stable), ""),
-        _row(numbers, "verdict.worst_margin", "worst margin", "", stab.worst_margin, margin_unit),
-        _row(numbers, "verdict.worst_frequency", "at frequency", "", stab.worst_frequency, "rad/s"),
-        _row(numbers, "verdict.relative_margin", "relative stability reserve", "", stab.relative_margin, ""),
-        _row(numbers, "verdict.binding_frequency", "binding frequency", "", stab.binding_frequency, "rad/s"),
-        _row(numbers, "verdict.min_eta", "smallest Llewellyn factor", "&eta;<sub>min</sub>", stab.min_eta, ""),
-    ))
-    numbers["verdict.stable"] = (float(stab.stable), "yes" if stab.stable else "no")
-
-    if imp_disp:
-        d = summary["impedance"]["design"]
-        design_rows: tuple[Row, ...] = (
-            _row(numbers, "design.bc", "for coupling damping", "<i>b</i><sub>c</sub>", d["bc"], "N&middot;s/m"),
-            _row(numbers, "design.kc_max", "largest stable coupling stiffness", "<i>k</i><sub>c,max</sub>",
-                 d["kc_max"], "N/m"),
-            _row(numbers, "design.frequency", "binding frequency", "", d["frequency"], "rad/s"),
-        )
-        design_par = f"Largest k<sub>c</sub> satisfying {eq} at the profile's b<sub>c</sub> (design chart below)."
-    else:
-        fd = summary["admittance"]["design"]["feasible_damping"]
-        mm = summary["admittance"]["design"]["min_mass"]
-        design_rows = (
-            _row(numbers, "design.mc", "for coupling mass", "<i>m</i><sub>c</sub>", fd["mc"], "kg"),
-            _row(numbers, "design.bc_low", "feasible damping, lower edge", "<i>b</i><sub>c,low</sub>", fd["low"],
-                 "N&middot;s/m"),
-            _row(numbers, "design.low_frequency", "binding frequency (lower)", "", fd["low_frequency"], "rad/s"),
-            _row(numbers, "design.bc_high", "feasible damping, upper edge", "<i>b</i><sub>c,high</sub>",
-                 fd["high"], "N&middot;s/m"),
-            _row(numbers, "design.high_frequency", "binding frequency (upper)", "", fd["high_frequency"], "rad/s"),
-            _row(numbers, "design.min_mc", "smallest stable coupling mass", "<i>m</i><sub>c,min</sub>",
-                 None if mm is None else mm["mc"], "kg"),
-            _row(numbers, "design.min_mc_bc", "with damping", "<i>b</i><sub>c</sub>",
-                 None if mm is None else mm["bc"], "N&middot;s/m"),
-            _row(numbers, "design.min_mc_frequency", "binding frequency", "",
-                 None if mm is None else mm["frequency"], "rad/s"),
-        )
-        design_par = f"Couplings (m<sub>c</sub>, b<sub>c</sub>) satisfying {eq} (design chart below)."
-    designs = Section("Design results", (design_par,), design_rows)
-
-    zrange = Section("Impedance range (Z-width)", (), (
-        _row(numbers, "range.k_max", "largest renderable stiffness", "<i>k</i><sub>max</sub>", stab.k_max, "N/m"),
-        _row(numbers, "range.b_min", "smallest renderable damping", "<i>b</i><sub>min</sub>", stab.b_min,
-             "N&middot;s/m"),
-        _row(numbers, "range.apparent_mass", "apparent free-motion mass", "", stab.apparent_mass, "kg"),
-        _row(numbers, "range.apparent_damping", "apparent free-motion damping", "", stab.apparent_damping,
-             "N&middot;s/m"),
-    ))
-
+    zrange = Section("Impedance range (Z-width)", (), _headline_rows(h, numbers, _RANGE_ROWS, HEADLINE_KEYS))
     sections = [Section("Device", ("Masses from the handle (1) to the actuator; element <i>i</i> joins mass "
                                    "<i>i</i> and mass <i>i</i>+1.",), _device_rows(profile, numbers)),
-                sampling, controller, verdict, designs, zrange]
-    wall = _wall(profile, res, numbers)
-    if wall is not None:
-        sections.append(wall)
-    if sampled:
-        sec = _sampled(profile, res, numbers, None if not imp_disp else summary["impedance"]["design"]["kc_max"])
+                sampling, _controller(profile, numbers), _verdict(h, profile, numbers), _designs(h, numbers), zrange]
+    for sec in (_wall(profile, res, numbers), _sampled(profile, res, numbers) if sampled else None):
         if sec is not None:
             sections.append(sec)
     return ReportContent(
@@ -341,6 +307,6 @@ def gather(profile: Profile, *, source: str | None = None, sampled: bool = True,
         sections=tuple(sections),
         methods=METHODS,
         numbers=numbers,
-        summary=summary,
+        headline=h,
         results=res,
     )

@@ -8,6 +8,7 @@ the transparency curves, the sampled-data map and the scenario, so they are smal
 
 from __future__ import annotations
 
+import html
 import math
 import os
 import sys
@@ -21,7 +22,7 @@ from PySide6.QtCore import Qt, qInstallMessageHandler
 from PySide6.QtGui import QFont, QGuiApplication
 from PySide6.QtWidgets import QApplication
 
-from app.core.compute_graph import ChartResult
+from analysis.study import display_kind
 from app.views.base import PlotView, Series, clean_xy
 from app.views.design_chart import DesignChart
 from app.views.range_plot import RangePlot
@@ -133,110 +134,119 @@ def _notes(view: PlotView) -> str:
     return f" Note: {text}." if text else ""
 
 
+def _bound(content: ReportContent, key: str) -> Figure:
+    stab = content.results["stability"]
+    v = StabilityPlot()
+    v.update_result(stab)
+    cap = (f"Coupling term against the stability bound (eq. {display_kind(stab).bound_equation}) over the band. "
+           f"Shaded: negative margin. Worst margin {num(stab.worst_margin)} at {num(stab.worst_frequency)} rad/s.")
+    return Figure(key, "Stability bound", cap, v)
+
+
+def _range(content: ReportContent, key: str) -> Figure:
+    stab = content.results["stability"]
+    v = RangePlot()
+    v.update_result(stab)
+    cap = (f"Impedance range: |Z<sub>min</sub>| to |Z<sub>max</sub>| (shaded); k<sub>max</sub> = "
+           f"{num(stab.k_max)} N/m, b<sub>min</sub> = {num(stab.b_min)} N&middot;s/m.")
+    return Figure(key, "Impedance range (Z-width)", cap, v)
+
+
+def _chart(content: ReportContent, key: str) -> Figure:
+    res = content.results
+    v = DesignChart()
+    v.update_chart(res["chart"])
+    v.update_point(*res["chart_point"], res["stability"].stable)
+    cap = ("Largest k<sub>c</sub> satisfying eq. 9 against b<sub>c</sub>; the dot is the profile's coupling."
+           if display_kind(res["stability"]).is_impedance else
+           "Feasible (m<sub>c</sub>, b<sub>c</sub>) region of eq. 21; the dot is the profile's coupling.")
+    return Figure(key, "Design chart", cap, v)
+
+
+def _tradeoff(content: ReportContent, key: str) -> Figure | None:
+    tc, best = content.results.get("tradeoff"), content.results.get("optimum")
+    if tc is None:
+        return None
+    if key == "tradeoff_j":
+        v = CurvesPlot("Transparency index", ("B_c", "N·s/m"), ("J", "–"), log_y=True)
+        v.add("J (eq. 10–11)", tc.bc, tc.index, "#1f5fbf")
+        if math.isfinite(best.bc):
+            v.add("optimum", [best.bc], [best.index], "#c92a2a", symbol="o")
+        cap = (f"Transparency index J against the controller damping B<sub>c</sub>; optimum B<sub>c</sub> = "
+               f"{num(best.bc)} N&middot;s/m, J = {num(best.index)}.")
+        return Figure(key, "Transparency index", cap, v)
+    v = CurvesPlot("Robust stability", ("B_c", "N·s/m"), ("‖L‖∞", "–"))
+    v.add("‖L‖∞ (eq. 16)", tc.bc, tc.peak, "#d9480f")
+    v.hline(1.0, "limit ‖L‖∞ = 1 (eq. 17)")
+    if math.isfinite(best.bc):
+        v.add("optimum", [best.bc], [best.peak], "#c92a2a", symbol="o")
+    cap = (f"Robustness peak &#8214;L&#8214;<sub>&infin;</sub> against B<sub>c</sub> "
+           f"(&alpha; = {num(tc.alpha)}, &beta; = {num(tc.beta)}); stable for every weighted "
+           "uncertainty below the line.")
+    return Figure(key, "Robust stability", cap, v)
+
+
+def _step(content: ReportContent, key: str) -> Figure | None:
+    sr = content.results.get("step")
+    if sr is None:
+        return None
+    v = CurvesPlot("Step response", ("t", "s"), ("x", "mm"))
+    v.add("handle position", sr.t, sr.position * 1e3, "#1f5fbf")
+    v.add("ideal virtual wall", sr.t, sr.wall_position * 1e3, "#868e96", style=Qt.PenStyle.DashLine)
+    cap = (f"Handle position for a {num(sr.human_force[0])} N force step on the exact sampled loop, "
+           f"B<sub>c</sub> = {num(sr.bc)} N&middot;s/m, against the ideal wall.")
+    return Figure(key, "Virtual wall step response", cap, v)
+
+
+def _map(content: ReportContent, key: str) -> Figure | None:
+    smap = content.results.get("map")
+    if smap is None:
+        return None
+    v = StabilityMapView()  # the app's own map view: same colours, colour bar and ρ = 1 line
+    v.update_map(smap)
+    v.update_point(*content.results["map_point"], None)
+    term = ("hands-off, the paper's penalty wall" if display_kind(content.profile).is_impedance
+            else "rigid grasp, free motion")
+    cap = (f"Spectral radius &rho; of the exact sampled closed loop ({term}) over {html.escape(smap.x_name)} "
+           f"&times; {html.escape(smap.y_name)}, as in the app's sampled-data tab; "
+           f"{len(smap.x)}&times;{len(smap.y)} grid, the black line is &rho; = 1.")
+    return Figure(key, "Sampled-data stability map", cap, v)
+
+
+def _scenario(content: ReportContent, key: str) -> Figure | None:
+    out = content.results.get("simulation")
+    if out is None:
+        return None
+    p = content.profile
+    name = p.simulation.scenario.name if p.simulation else ""
+    if key == "scenario_position":
+        v = CurvesPlot("Scenario: position", ("t", "s"), ("x", "mm"))
+        v.add("handle", out.t, out.positions[:, 0] * 1e3, "#1f5fbf")
+        v.add("environment", out.t, np.asarray(out.x_e, float) * 1e3, "#868e96", style=Qt.PenStyle.DashLine)
+        cap = (f"Scenario &ldquo;{name}&rdquo;: handle and environment positions. Verdict: "
+               f"{out.verdict.kind} ({out.verdict.reason}).")
+        return Figure(key, "Scenario time response: position", cap, v)
+    v = CurvesPlot("Scenario: forces", ("t", "s"), ("F", "N"))
+    v.add("actuator F_d", out.t, out.f_d, "#1f5fbf")
+    v.add("human F_h", out.t, out.f_h, "#2b8a3e", style=Qt.PenStyle.DashLine)
+    v.add("environment F_e", out.t, out.f_e, "#d9480f", width=1.2)
+    cap = f"Scenario &ldquo;{name}&rdquo;: actuator, human and environment forces."
+    return Figure(key, "Scenario time response: forces", cap, v)
+
+
+_BUILDERS = {"bound": _bound, "range": _range, "chart": _chart, "tradeoff_j": _tradeoff, "tradeoff_l": _tradeoff,
+             "step": _step, "map": _map, "scenario_position": _scenario, "scenario_force": _scenario}
+
+
 def make_view(content: ReportContent, key: str) -> Figure | None:
     """One figure by key: ``bound``, ``range``, ``chart``, ``tradeoff_j``, ``tradeoff_l``, ``step``,
     ``map``, ``scenario_position``, ``scenario_force``; ``None`` if the profile has no such data."""
     ensure_app()
-    res = content.results
-    stab = res["stability"]
-    imp = stab.display == "impedance"
-    p = content.profile
-    if key == "bound":
-        v = StabilityPlot()
-        v.update_result(stab)
-        eq = "eq. 9" if imp else "eq. 21"
-        cap = (f"Coupling term against the stability bound ({eq}) over the band. Shaded: negative margin. "
-               f"Worst margin {num(stab.worst_margin)} at {num(stab.worst_frequency)} rad/s.")
-        fig = Figure(key, "Stability bound", cap, v)
-    elif key == "range":
-        v = RangePlot()
-        v.update_result(stab)
-        cap = (f"Impedance range: |Z<sub>min</sub>| to |Z<sub>max</sub>| (shaded); k<sub>max</sub> = "
-               f"{num(stab.k_max)} N/m, b<sub>min</sub> = {num(stab.b_min)} N&middot;s/m.")
-        fig = Figure(key, "Impedance range (Z-width)", cap, v)
-    elif key == "chart":
-        v = DesignChart()
-        kind, chart = res["chart"]
-        v.update_chart(ChartResult(kind, chart))
-        v.update_point(*res["chart_point"], stab.stable)
-        cap = ("Largest k<sub>c</sub> satisfying eq. 9 against b<sub>c</sub>; the dot is the profile's coupling."
-               if imp else "Feasible (m<sub>c</sub>, b<sub>c</sub>) region of eq. 21; the dot is the profile's "
-               "coupling.")
-        fig = Figure(key, "Design chart", cap, v)
-    elif key in ("tradeoff_j", "tradeoff_l"):
-        tc = res.get("tradeoff")
-        if tc is None:
-            return None
-        best = res["optimum"]
-        if key == "tradeoff_j":
-            v = CurvesPlot("Transparency index", ("B_c", "N·s/m"), ("J", "–"), log_y=True)
-            v.add("J (eq. 10–11)", tc.bc, tc.index, "#1f5fbf")
-            if math.isfinite(best.bc):
-                v.add("optimum", [best.bc], [best.index], "#c92a2a", symbol="o")
-            cap = (f"Transparency index J against the controller damping B<sub>c</sub>; optimum B<sub>c</sub> = "
-                   f"{num(best.bc)} N&middot;s/m, J = {num(best.index)}.")
-            fig = Figure(key, "Transparency index", cap, v)
-        else:
-            v = CurvesPlot("Robust stability", ("B_c", "N·s/m"), ("‖L‖∞", "–"))
-            v.add("‖L‖∞ (eq. 16)", tc.bc, tc.peak, "#d9480f")
-            v.hline(1.0, "limit ‖L‖∞ = 1 (eq. 17)")
-            if math.isfinite(best.bc):
-                v.add("optimum", [best.bc], [best.peak], "#c92a2a", symbol="o")
-            cap = (f"Robustness peak &#8214;L&#8214;<sub>&infin;</sub> against B<sub>c</sub> "
-                   f"(&alpha; = {num(tc.alpha)}, &beta; = {num(tc.beta)}); stable for every weighted "
-                   "uncertainty below the line.")
-            fig = Figure(key, "Robust stability", cap, v)
-    elif key == "step":
-        sr = res.get("step")
-        if sr is None:
-            return None
-        v = CurvesPlot("Step response", ("t", "s"), ("x", "mm"))
-        v.add("handle position", sr.t, sr.position * 1e3, "#1f5fbf")
-        v.add("ideal virtual wall", sr.t, sr.wall_position * 1e3, "#868e96", style=Qt.PenStyle.DashLine)
-        cap = (f"Handle position for a {num(sr.human_force[0])} N force step on the exact sampled loop, "
-               f"B<sub>c</sub> = {num(sr.bc)} N&middot;s/m, against the ideal wall.")
-        fig = Figure(key, "Virtual wall step response", cap, v)
-    elif key == "map":
-        smap = res.get("map")
-        if smap is None:
-            return None
-        v = StabilityMapView()  # the app's own map view: same colours, colour bar and ρ = 1 line
-        v.update_map(smap)
-        if imp:
-            kind, chart = res["chart"]
-            kc = np.asarray(chart.kc, float)
-            ok = np.isfinite(kc) & (kc > 0)
-            xs = np.asarray(chart.bc)[ok]
-            inside = (xs >= smap.x[0]) & (xs <= smap.x[-1])
-            if inside.any():
-                item = v.curve("largest k<sub>c</sub>, two-port (eq. 9)", "#1f5fbf", 2.0, Qt.PenStyle.DashLine)
-                item.setData(xs[inside], kc[ok][inside])
-        v.update_point(*res["map_point"], None)
-        term = ("hands-off, rigid penalty wall" if imp else "rigid grasp, free motion")
-        cap = (f"Spectral radius &rho; of the exact sampled closed loop ({term}); "
-               f"{len(smap.x)}&times;{len(smap.y)} grid, the black line is &rho; = 1.")
-        fig = Figure(key, "Sampled-data stability map", cap, v)
-    elif key in ("scenario_position", "scenario_force"):
-        out = res.get("simulation")
-        if out is None:
-            return None
-        name = p.simulation.scenario.name if p.simulation else ""
-        if key == "scenario_position":
-            v = CurvesPlot("Scenario: position", ("t", "s"), ("x", "mm"))
-            v.add("handle", out.t, out.positions[:, 0] * 1e3, "#1f5fbf")
-            v.add("environment", out.t, np.asarray(out.x_e, float) * 1e3, "#868e96", style=Qt.PenStyle.DashLine)
-            cap = (f"Scenario &ldquo;{name}&rdquo;: handle and environment positions. Verdict: "
-                   f"{out.verdict.kind} ({out.verdict.reason}).")
-            fig = Figure(key, "Scenario time response: position", cap, v)
-        else:
-            v = CurvesPlot("Scenario: forces", ("t", "s"), ("F", "N"))
-            v.add("actuator F_d", out.t, out.f_d, "#1f5fbf")
-            v.add("human F_h", out.t, out.f_h, "#2b8a3e", style=Qt.PenStyle.DashLine)
-            v.add("environment F_e", out.t, out.f_e, "#d9480f", width=1.2)
-            cap = f"Scenario &ldquo;{name}&rdquo;: actuator, human and environment forces."
-            fig = Figure(key, "Scenario time response: forces", cap, v)
-    else:
+    if key not in _BUILDERS:
         raise ValueError(f"unknown plot {key!r}")
+    fig = _BUILDERS[key](content, key)
+    if fig is None:
+        return None
     _prepare(fig.view)
     fig.caption += _notes(fig.view)
     return fig

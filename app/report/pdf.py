@@ -142,6 +142,48 @@ def _paginate(blocks: list[_Block], avail: float) -> list[list[_Block]]:
     return pages
 
 
+def _blocks(content: ReportContent, figures: list[Figure], width: float, writer: QPdfWriter) -> list[_Block]:
+    """The report as unsplittable blocks, the "Figures" heading kept with the first figure."""
+    blocks: list[_Block] = [_Text(title_html(content), width, writer)]
+    for sec in content.sections:
+        blocks.append(_Text(section_html(sec), width, writer))
+    first_fig = _Text("<h2>Figures</h2>", width, writer)
+    first_fig.keep = True
+    blocks.append(first_fig)
+    for i, fig in enumerate(figures, 1):
+        blocks.append(_Figure(fig, i, width, writer))
+    blocks.append(_Text("<h2>Methods</h2>" + "".join(f"<p>{p}</p>" for p in content.methods), width, writer))
+    merged: list[_Block] = []
+    for b in blocks:
+        if merged and merged[-1] is first_fig and isinstance(b, _Figure):
+            b.keep = True
+            b.head = _Text(f"<h2>Figures</h2><p class='fig'>Figure 1. {b.fig.title}</p>", width, writer)
+            b.height = b.head.height + b.plot_h + 4 + b.cap.height
+            merged[-1] = b
+            continue
+        merged.append(b)
+    return merged
+
+
+def _frame(painter: QPainter, content: ReportContent, page: QSizeF, width: float, n: int, total: int) -> None:
+    """Running header (profile, date) and footer (version, page n of total)."""
+    small = QFont()
+    small.setPointSizeF(8)
+    painter.setFont(small)
+    painter.setPen(QColor("#6b7785"))
+    top = QRectF(MARGIN_X, MARGIN_TOP - 40, width, 20)
+    painter.drawText(top, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter,
+                     f"zwidth design report — {content.profile.name}")
+    painter.drawText(top, Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter, content.date)
+    painter.setPen(QPen(QColor("#c8d0da"), 0.8))
+    painter.drawLine(int(MARGIN_X), int(MARGIN_TOP - 16), int(MARGIN_X + width), int(MARGIN_TOP - 16))
+    bottom = QRectF(MARGIN_X, page.height() - MARGIN_BOTTOM + 24, width, 20)
+    painter.drawLine(int(MARGIN_X), int(bottom.top() - 6), int(MARGIN_X + width), int(bottom.top() - 6))
+    painter.setPen(QColor("#6b7785"))
+    painter.drawText(bottom, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter, f"zwidth {content.version}")
+    painter.drawText(bottom, Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter, f"Page {n} of {total}")
+
+
 def write_pdf(content: ReportContent, figures: list[Figure], path: str | os.PathLike,
               page_size: str = "a4") -> int:
     """Write the PDF report; returns the page count."""
@@ -156,55 +198,15 @@ def write_pdf(content: ReportContent, figures: list[Figure], path: str | os.Path
     writer.setCreator(f"zwidth {content.version}")
     page = QSizeF(writer.width(), writer.height())
     width = page.width() - 2 * MARGIN_X
-    avail = page.height() - MARGIN_TOP - MARGIN_BOTTOM
-
-    blocks: list[_Block] = [_Text(title_html(content), width, writer)]
-    secs = list(content.sections)
-    for sec in secs:
-        blocks.append(_Text(section_html(sec), width, writer))
-    first_fig = _Text("<h2>Figures</h2>", width, writer)
-    first_fig.keep = True
-    blocks.append(first_fig)
-    for i, fig in enumerate(figures, 1):
-        blocks.append(_Figure(fig, i, width, writer))
-    methods = _Text("<h2>Methods</h2>" + "".join(f"<p>{p}</p>" for p in content.methods), width, writer)
-    blocks.append(methods)
-    # keep the "Figures" heading with the first figure
-    merged: list[_Block] = []
-    for b in blocks:
-        if merged and merged[-1] is first_fig and isinstance(b, _Figure):
-            b.keep = True
-            b.head = _Text(f"<h2>Figures</h2><p class='fig'>Figure 1. {b.fig.title}</p>", width, writer)
-            b.height = b.head.height + b.plot_h + 4 + b.cap.height
-            merged[-1] = b
-            continue
-        merged.append(b)
-    pages = _paginate(merged, avail)
-
+    pages = _paginate(_blocks(content, figures, width, writer), page.height() - MARGIN_TOP - MARGIN_BOTTOM)
     painter = QPainter()
     if not painter.begin(writer):
         raise OSError(f"cannot write {path}")
     try:
-        small = QFont()
-        small.setPointSizeF(8)
         for n, blist in enumerate(pages, 1):
             if n > 1:
                 writer.newPage()
-            painter.setFont(small)
-            painter.setPen(QColor("#6b7785"))
-            top = QRectF(MARGIN_X, MARGIN_TOP - 40, width, 20)
-            painter.drawText(top, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter,
-                             f"zwidth design report — {content.profile.name}")
-            painter.drawText(top, Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter, content.date)
-            painter.setPen(QPen(QColor("#c8d0da"), 0.8))
-            painter.drawLine(int(MARGIN_X), int(MARGIN_TOP - 16), int(MARGIN_X + width), int(MARGIN_TOP - 16))
-            bottom = QRectF(MARGIN_X, page.height() - MARGIN_BOTTOM + 24, width, 20)
-            painter.drawLine(int(MARGIN_X), int(bottom.top() - 6), int(MARGIN_X + width), int(bottom.top() - 6))
-            painter.setPen(QColor("#6b7785"))
-            painter.drawText(bottom, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter,
-                             f"zwidth {content.version}")
-            painter.drawText(bottom, Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter,
-                             f"Page {n} of {len(pages)}")
+            _frame(painter, content, page, width, n, len(pages))
             y = float(MARGIN_TOP)
             for i, b in enumerate(blist):
                 if i:

@@ -5,6 +5,8 @@ from __future__ import annotations
 from PySide6.QtCore import QTimer, Slot
 from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 
+from analysis.study import display_kind
+
 from app.views.base import PlotView
 from app.views.design_chart import DesignChart
 from app.tabs.base import AnalysisTab, AppContext
@@ -35,22 +37,20 @@ class DesignTab(AnalysisTab):
     def refresh(self) -> None:
         graph = self.ctx.graph
         fresh = graph.is_fresh("design_chart")
-        value = graph.node("design_chart").value
+        value = graph.result("design_chart")
         if not fresh:
             # start the worker after this frame is painted: the first paint of the tab and a
             # starting worker would otherwise compete for the GIL within one frame
             QTimer.singleShot(20, self._request_chart)
         p = self.ctx.model.profile
-        shown = value if value is not None and value.display == p.display else None
+        kind = display_kind(p)
+        shown = value if value is not None and display_kind(value) is kind else None
         if shown is not self._shown:  # redraw the curves only when the chart itself changed
             self.chart.update_chart(shown)
             self._shown = shown
         self.chart.set_busy(not fresh)
         stable = graph.get(graph.stability_name).stable
-        if p.display == "impedance":
-            self.chart.update_point(p.bc, p.kc, stable)
-        else:
-            self.chart.update_point(p.mc, p.bc_adm, stable)
+        self.chart.update_point(*kind.chart_point(p), stable)
         self.refreshes += 1
         self.stale = False
 
@@ -67,10 +67,8 @@ class DesignTab(AnalysisTab):
     @Slot(float, float)
     def _on_pick(self, x: float, y: float) -> None:
         x, y = float(f"{x:.4g}"), float(f"{y:.4g}")
-        if self.ctx.model.profile.display == "impedance":
-            self.ctx.editor.edit_many({"bc": x, "kc": y}, "Pick gains on the design chart")
-        else:
-            self.ctx.editor.edit_many({"mc": x, "bc_adm": y}, "Pick gains on the design chart")
+        edits = display_kind(self.ctx.model.profile).edits_from_chart(x, y)
+        self.ctx.editor.edit_many(edits, "Pick gains on the design chart")
 
     def plot_views(self) -> list[PlotView]:
         return [self.chart]

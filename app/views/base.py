@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -11,7 +12,7 @@ from PySide6.QtCore import QPointF, QRectF, Qt, Signal, Slot
 from PySide6.QtGui import QAction, QColor, QFont, QPainter
 from PySide6.QtWidgets import QGraphicsItem, QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
-__all__ = ["PlotView", "Series", "clean_xy", "fmt", "PALETTE", "mark_design_point"]
+__all__ = ["PlotView", "Series", "clean_xy", "fmt", "PALETTE", "mark_design_point", "rich_label"]
 
 PALETTE = {
     "light": {"bg": "#ffffff", "fg": "#222222", "grid": 0.25, "a": "#1f5fbf", "b": "#d9480f", "c": "#2b8a3e",
@@ -30,6 +31,11 @@ class Series:
     y_label: str
     x: np.ndarray
     y: np.ndarray
+
+
+def rich_label(text: str) -> str:
+    """A plain-text symbol as Qt rich text: ``Re(1/Z_c)`` -> ``Re(1/Z<sub>c</sub>)``."""
+    return re.sub(r"_(\w+)", r"<sub>\1</sub>", text)
 
 
 def fmt(x: float, digits: int = 4) -> str:

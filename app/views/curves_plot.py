@@ -12,6 +12,7 @@ import math
 import re
 
 import numpy as np
+from numpy.typing import ArrayLike
 import pyqtgraph as pg
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QSizePolicy, QWidget
@@ -92,7 +93,7 @@ class CurvesPlot(PlotView):
         self.region_spans[key] = []
 
     # -- updating --------------------------------------------------------------------------------
-    def set_curve(self, key: str, x, y, gaps: bool = False) -> int:
+    def set_curve(self, key: str, x: ArrayLike, y: ArrayLike, gaps: bool = False) -> int:
         """Draw ``y`` against ``x`` (values that cannot be drawn are dropped); returns how many.
 
         With ``gaps`` the line breaks where values are dropped instead of joining across them.

@@ -12,7 +12,7 @@ import pyqtgraph as pg
 from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QWidget
 
-from app.core.compute_graph import ChartResult
+from analysis.study import IMPEDANCE, ChartResult, DisplayKind, display_kind
 from app.views.base import PlotView, Series, clean_xy, mark_design_point, plain
 
 __all__ = ["DesignChart"]
@@ -24,7 +24,7 @@ class DesignChart(PlotView):
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__("Design chart", parent)
         self.set_log(True, True)
-        self.display = "impedance"
+        self.kind: DisplayKind = IMPEDANCE
         self.upper = self.curve("largest k<sub>c</sub> (eq. 9)", "#1f5fbf")
         self.lower = self.curve(None, "#1f5fbf")
         self.fill = pg.FillBetweenItem(self.lower, self.upper, brush=pg.mkBrush(43, 138, 62, 50))
@@ -59,8 +59,8 @@ class DesignChart(PlotView):
             self._refresh_warning()
             self.bump()
             return
-        self.display = res.display
-        if res.display == "impedance":
+        self.kind = display_kind(res)
+        if self.kind.is_impedance:
             ch = res.chart
             self.set_axis_labels("b_c", "N·s/m", "k_c", "N/m")
             self.title = "Design chart: largest stable k_c against b_c"
@@ -137,6 +137,6 @@ class DesignChart(PlotView):
         rows = list(self._series)
         pts = self.point.getData()
         if pts[0] is not None and len(pts[0]):
-            xl, yl = (("b_c (N s/m)", "k_c (N/m)") if self.display == "impedance" else ("m_c (kg)", "b_c (N s/m)"))
+            xl, yl = self.kind.chart_x.axis_label(), self.kind.chart_y.axis_label()
             rows.append(Series("current gains", xl, yl, np.asarray(pts[0]), np.asarray(pts[1])))
         return rows

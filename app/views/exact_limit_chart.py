@@ -16,7 +16,7 @@ from PySide6.QtWidgets import QWidget
 
 from analysis.sampled import CriticalChart, CriticalMassChart
 
-from app.core.compute_graph import ChartResult
+from analysis.study import IMPEDANCE, ChartResult, DisplayKind, display_kind
 from app.views.base import PlotView, Series, clean_xy, mark_design_point, plain
 
 __all__ = ["ExactLimitChart"]
@@ -26,7 +26,7 @@ class ExactLimitChart(PlotView):
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__("Exact limit vs two-port bound", parent)
         self.set_log(True, True)
-        self.display = "impedance"
+        self.kind: DisplayKind = IMPEDANCE
         self.bound = self.curve("two-port bound (eq. 9)", "#1f5fbf", 2.0, Qt.PenStyle.DashLine)
         self.bound_low = self.curve(None, "#1f5fbf", 2.0, Qt.PenStyle.DashLine)
         self.exact = self.curve("exact sampled limit", "#d9480f", 2.5)
@@ -51,9 +51,9 @@ class ExactLimitChart(PlotView):
     def set_busy(self, busy: bool, text: str = "") -> None:
         self.header.setText(f"<b>{self.title}</b>" + (f"  <i>({text or 'updating…'})</i>" if busy else ""))
 
-    def _set_display(self, display: str) -> None:
-        self.display = display
-        if display == "impedance":
+    def _set_display(self, display: DisplayKind | str) -> None:
+        self.kind = display_kind(display)
+        if self.kind.is_impedance:
             self.set_axis_labels("b_c", "N·s/m", "k_c", "N/m")
             self.title = "Largest stable k_c: exact sampled loop vs two-port bound"
         else:
@@ -67,7 +67,7 @@ class ExactLimitChart(PlotView):
             self.bound.setData([], [])
             self.bound_low.setData([], [])
             self._bound_series = []
-        elif res.display == "impedance":
+        elif display_kind(res).is_impedance:
             ch = res.chart
             kc = np.asarray(ch.kc, float)
             if np.any(np.isinf(kc)):
@@ -88,7 +88,7 @@ class ExactLimitChart(PlotView):
         self._refresh_warning()
         self.bump()
 
-    def update_exact(self, chart: CriticalChart | CriticalMassChart | None, display: str) -> None:
+    def update_exact(self, chart: CriticalChart | CriticalMassChart | None, display: DisplayKind | str) -> None:
         self._set_display(display)
         self.chart = chart
         notes: list[str] = []
@@ -119,8 +119,7 @@ class ExactLimitChart(PlotView):
             self.exact.setData(x, y)
             self._exact_series = [Series(f"exact smallest m_c (delay {chart.delay_samples})", "m_c (kg)",
                                          "b_c (N s/m)", x, y)]
-        label = "two-port bound (eq. 9)" if display == "impedance" else "two-port b_c edges (eq. 21)"
-        self.legend.getLabel(self.bound).setText(label)
+        self.legend.getLabel(self.bound).setText(self.kind.chart_note)
         self._notes["exact"] = notes
         self.header.setText(f"<b>{self.title}</b>")
         self._refresh_warning()
@@ -145,6 +144,6 @@ class ExactLimitChart(PlotView):
         rows = [*self._bound_series, *self._exact_series]
         pts = self.point.getData()
         if pts[0] is not None and len(pts[0]):
-            xl, yl = (("b_c (N s/m)", "k_c (N/m)") if self.display == "impedance" else ("m_c (kg)", "b_c (N s/m)"))
+            xl, yl = self.kind.chart_x.axis_label(), self.kind.chart_y.axis_label()
             rows.append(Series("current gains", xl, yl, np.asarray(pts[0]), np.asarray(pts[1])))
         return rows

@@ -9,8 +9,9 @@ from PySide6.QtGui import QPainterPath
 from PySide6.QtWidgets import QGraphicsPathItem, QWidget
 
 from analysis import StabilityResult
+from analysis.study import display_kind
 
-from app.views.base import PlotView, Series, clean_xy, plain
+from app.views.base import PlotView, Series, clean_xy, plain, rich_label
 
 __all__ = ["RangePlot"]
 
@@ -35,14 +36,14 @@ class RangePlot(PlotView):
 
     def update_result(self, res: StabilityResult) -> None:
         w = res.w
-        eqs = ("11", "12") if res.display == "impedance" else ("23", "24")
+        label_min, label_max = display_kind(res).range_labels()
         x1, y1, h1 = clean_xy(w, np.abs(res.zmin), True, True)
         x2, y2, h2 = clean_xy(w, np.abs(res.zmax), True, True)
         self.zmin_curve.setData(x1, y1)
         self.zmax_curve.setData(x2, y2)
         self._update_fill(x1, y1, x2, y2)
-        self.set_legend_text(self.zmin_curve, f"|Z<sub>min</sub>| (eq. {eqs[0]})")
-        self.set_legend_text(self.zmax_curve, f"|Z<sub>max</sub>| (eq. {eqs[1]})")
+        self.set_legend_text(self.zmin_curve, rich_label(label_min))
+        self.set_legend_text(self.zmax_curve, rich_label(label_max))
         self._series = [Series("|Z_min|", "omega (rad/s)", "|Z_min| (N s/m)", x1, y1),
                         Series("|Z_max|", "omega (rad/s)", "|Z_max| (N s/m)", x2, y2)]
         notes = []

@@ -18,17 +18,10 @@ from PySide6.QtWidgets import QWidget
 
 from analysis.sampled import StabilityMap
 
+from app.core.nodes_sampled import PARAMETER_LABELS
 from app.views.base import PlotView, Series, plain
 
 __all__ = ["StabilityMapView", "PARAMETER_LABELS", "radius_colormap"]
-
-#: Map parameter names of :data:`analysis.sampled.MAP_PARAMETERS` -> (axis label, unit).
-PARAMETER_LABELS: dict[str, tuple[str, str]] = {
-    "kc": ("k_c", "N/m"), "bc": ("b_c", "N·s/m"), "mc": ("m_c", "kg"), "kp": ("k_p", "N/m"),
-    "kd": ("k_d", "N·s/m"), "kobj": ("k_obj", "N/m"), "bobj": ("b_obj", "N·s/m"), "me": ("m_e", "kg"),
-    "grasp_mass": ("grasp mass", "kg"), "grasp_damping": ("grasp damping", "N·s/m"),
-    "grasp_stiffness": ("grasp stiffness", "N/m"),
-}
 
 #: Colour scale capped here so that a few wildly unstable pixels do not wash out the boundary.
 RHO_CAP = 1.5

@@ -15,8 +15,9 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QWidget
 
 from analysis import StabilityResult
+from analysis.study import display_kind
 
-from app.views.base import PlotView, Series, clean_xy, plain
+from app.views.base import PlotView, Series, clean_xy, plain, rich_label
 
 __all__ = ["StabilityPlot", "negative_runs"]
 
@@ -72,14 +73,12 @@ class StabilityPlot(PlotView):
         return self._regions[i]
 
     def update_result(self, res: StabilityResult, log_y: bool = False) -> None:
-        imp = res.display == "impedance"
-        term = "Re(1/Z_c)" if imp else "Re(Z_cA)"
-        unit = "m/(N·s)" if imp else "N·s/m"
-        eq = "eq. 9" if imp else "eq. 21"
+        kind = display_kind(res)
+        term, unit, bound = kind.coupling_term_label, kind.margin_unit, kind.bound_label()
         self.set_log(True, log_y)
         self.set_axis_labels("ω", "rad/s", f"|{term}|, |bound|" if log_y else f"{term}, bound", unit)
-        self.set_legend_text(self.coupling_curve, "Re(1/Z<sub>c</sub>)" if imp else "Re(Z<sub>cA</sub>)")
-        self.set_legend_text(self.bound_curve, f"bound ({eq})")
+        self.set_legend_text(self.coupling_curve, rich_label(term))
+        self.set_legend_text(self.bound_curve, bound)
 
         w = res.w
         c, b = np.asarray(res.coupling_term, float), np.asarray(res.bound, float)
@@ -94,7 +93,7 @@ class StabilityPlot(PlotView):
         self.coupling_curve.setData(xc, yc)
         self.bound_curve.setData(xb, yb)
         self._series = [Series(term, "omega (rad/s)", f"{term} ({unit})", xc, yc),
-                        Series(f"bound ({eq})", "omega (rad/s)", f"bound ({unit})", xb, yb)]
+                        Series(bound, "omega (rad/s)", f"bound ({unit})", xb, yb)]
         hidden = hc + hb
         if hidden:
             notes.insert(0, f"{hidden} point(s) not drawn (non-finite{' or zero' if log_y else ''})")

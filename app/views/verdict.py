@@ -1,4 +1,9 @@
-"""The verdict: unconditionally stable or not, worst margin, binding frequency, η.  Always visible."""
+"""The verdict: unconditionally stable or not, worst margin, binding frequency, η.  Always visible.
+
+The numbers are the study's :class:`~analysis.study.Headline` of the stability result, printed with
+its quantities' one rule (:meth:`~analysis.study.Quantity.format`), so the window, ``zwidth
+analyze`` and the report show the same text (the stability reserve in per cent everywhere).
+"""
 
 from __future__ import annotations
 
@@ -8,8 +13,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QFrame, QGridLayout, QHBoxLayout, QLabel, QWidget
 
 from analysis import StabilityResult
-
-from app.views.base import fmt
+from analysis.study import Headline, format_number
 
 __all__ = ["VerdictView"]
 
@@ -65,22 +69,22 @@ class VerdictView(QFrame):
         self.margin, self.kmax, self.bmin = cells["margin"], cells["kmax"], cells["bmin"]
 
     def update_result(self, res: StabilityResult) -> None:
-        unit = "m/(N·s)" if res.display == "impedance" else "N·s/m"
-        if res.stable:
+        h = Headline.from_result(res)
+        if h.stable:
             text, color = "✔ Unconditionally stable", "#2b8a3e"
         else:
             text, color = "✘ Not unconditionally stable", "#c92a2a"
         self.badge.setText(text)
         self.badge.setStyleSheet(f"background: {color}; color: white; font-size: 15px; font-weight: 700;"
                                  "border-radius: 4px; padding: 6px 12px;")
-        rel = res.relative_margin
-        self.reserve.setText(f"{100 * rel:.3g} %" if math.isfinite(rel) else fmt(rel))
-        wf = res.binding_frequency if math.isfinite(res.binding_frequency) else res.worst_frequency
-        hz = f" ({fmt(wf / (2 * math.pi), 3)} Hz)" if math.isfinite(wf) else ""
-        self.frequency.setText(f"{fmt(wf)} rad/s{hz}")
-        self.margin.setText(f"{fmt(res.worst_margin, 3)} {unit}")
-        self.margin.setToolTip(f"{_TIPS['margin'].split(';')[0]}; here at {fmt(res.worst_frequency)} rad/s")
-        self.eta.setText(fmt(res.min_eta, 6))
-        self.kmax.setText(f"{fmt(res.k_max)} N/m")
-        self.bmin.setText(f"{fmt(res.b_min)} N·s/m")
+        self.reserve.setText(h.text("stability_reserve", rich=True))
+        key = "binding_frequency" if math.isfinite(h.binding_frequency) else "worst_frequency"
+        wf = h.value(key)
+        hz = f" ({format_number(wf / (2 * math.pi), 3, rich=True)} Hz)" if math.isfinite(wf) else ""
+        self.frequency.setText(h.text(key, rich=True) + hz)
+        self.margin.setText(h.text("worst_margin", rich=True))
+        self.margin.setToolTip(f"{_TIPS['margin'].split(';')[0]}; here at {h.text('worst_frequency')}")
+        self.eta.setText(h.text("min_eta", rich=True))
+        self.kmax.setText(h.text("k_max", rich=True))
+        self.bmin.setText(h.text("b_min", rich=True))
         self.revision += 1

@@ -1,34 +1,40 @@
-"""Impedance or admittance display (the profile's ``display`` field)."""
+"""Impedance or admittance display (the profile's ``display`` field): one radio button per display object."""
 
 from __future__ import annotations
 
 from PySide6.QtCore import Slot
 from PySide6.QtWidgets import QButtonGroup, QHBoxLayout, QRadioButton, QWidget
 
+from analysis.study import ADMITTANCE, DISPLAY_KINDS, IMPEDANCE, display_kind
+
 from app.core.commands import Editor
 from app.core.model import ProfileModel
 
 __all__ = ["DisplaySelector"]
 
+_TIPS = {IMPEDANCE.name: "Spring-damper virtual coupling, section III (eq. 4, 9)",
+         ADMITTANCE.name: "Mass-damper virtual coupling with a PD position loop, section IV (eq. 16, 21)"}
+
 
 class DisplaySelector(QWidget):
+    """``buttons`` by display name; ``impedance`` and ``admittance`` are the two buttons."""
+
     def __init__(self, model: ProfileModel, editor: Editor, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self._model, self._editor = model, editor
-        self.impedance = QRadioButton("Impedance display")
-        self.impedance.setToolTip("Spring-damper virtual coupling, section III (eq. 4, 9)")
-        self.admittance = QRadioButton("Admittance display")
-        self.admittance.setToolTip("Mass-damper virtual coupling with a PD position loop, section IV (eq. 16, 21)")
         self._group = QButtonGroup(self)
-        self._group.addButton(self.impedance)
-        self._group.addButton(self.admittance)
         lay = QHBoxLayout(self)
         lay.setContentsMargins(0, 0, 0, 0)
-        lay.addWidget(self.impedance)
-        lay.addWidget(self.admittance)
+        self.buttons: dict[str, QRadioButton] = {}
+        for name, kind in DISPLAY_KINDS.items():
+            button = QRadioButton(kind.title)
+            button.setToolTip(_TIPS.get(name, kind.title))
+            button.clicked.connect(lambda _=False, n=name: self._editor.edit("display", n))
+            self._group.addButton(button)
+            lay.addWidget(button)
+            self.buttons[name] = button
         lay.addStretch(1)
-        self.impedance.clicked.connect(lambda: self._editor.edit("display", "impedance"))
-        self.admittance.clicked.connect(lambda: self._editor.edit("display", "admittance"))
+        self.impedance, self.admittance = self.buttons[IMPEDANCE.name], self.buttons[ADMITTANCE.name]
         model.fieldChanged.connect(self._on_field)
         model.profileReplaced.connect(self.refresh)
         self.refresh()
@@ -40,5 +46,4 @@ class DisplaySelector(QWidget):
 
     @Slot()
     def refresh(self) -> None:
-        button = self.impedance if self._model.profile.display == "impedance" else self.admittance
-        button.setChecked(True)
+        self.buttons[display_kind(self._model.profile).name].setChecked(True)

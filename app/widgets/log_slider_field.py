@@ -62,6 +62,17 @@ class LogSliderField(QWidget):
         self._drag: int | None = None
         self._syncing = False
 
+        self._build(label, unit, log, tooltip)
+        self.slider.valueChanged.connect(self._on_slider)
+        self.slider.sliderPressed.connect(self._on_pressed)
+        self.slider.sliderReleased.connect(self._on_released)
+        self.spin.valueChanged.connect(self._on_spin)
+        model.fieldChanged.connect(self._on_field)
+        model.profileReplaced.connect(self.refresh)
+        self.refresh()
+
+    def _build(self, label: str, unit: str, log: bool, tooltip: str) -> None:
+        """``label  [slider]  [spin box] unit`` over the error label."""
         self.label = QLabel(label)
         self.label.setTextFormat(Qt.TextFormat.RichText)
         self.label.setMinimumWidth(34)
@@ -94,14 +105,6 @@ class LogSliderField(QWidget):
         grid.addWidget(self.unit, 0, 3)
         grid.addWidget(self.error, 1, 1, 1, 3)
         grid.setColumnStretch(1, 1)
-
-        self.slider.valueChanged.connect(self._on_slider)
-        self.slider.sliderPressed.connect(self._on_pressed)
-        self.slider.sliderReleased.connect(self._on_released)
-        self.spin.valueChanged.connect(self._on_spin)
-        model.fieldChanged.connect(self._on_field)
-        model.profileReplaced.connect(self.refresh)
-        self.refresh()
 
     # -- mapping ------------------------------------------------------------------------------------
     def make_compact(self) -> None:
@@ -158,12 +161,20 @@ class LogSliderField(QWidget):
         self.spin.setStyleSheet("QDoubleSpinBox { border: 1px solid #d0312d; }" if reason else "")
 
     # -- widget -> editor -------------------------------------------------------------------------
-    def _send(self, value: float, drag: int | None) -> None:
+    def write(self, value: float, drag: int | None = None) -> str | None:
+        """Send ``value`` as a user edit (``drag``: the token of a slider drag); returns the refusal reason.
+
+        A refused value is shown next to the field and changes nothing.
+        """
         reason = self._write(value, drag)
         if reason:
             self.set_error(reason)
         else:
             self.edited.emit(value)
+        return reason
+
+    def _send(self, value: float, drag: int | None) -> None:
+        self.write(value, drag)
 
     @Slot()
     def _on_pressed(self) -> None:

@@ -7,6 +7,7 @@ command as any other edit (so undoing it restores ``None``).
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 
 from analysis import ValidationError
 
@@ -24,7 +25,8 @@ class SectionBinding:
                  title: str) -> None:
         self.model, self.editor, self.section, self.factory, self.title = model, editor, section, factory, title
 
-    def current(self, model: ProfileModel | None = None):
+    def current(self, model: ProfileModel | None = None) -> Any:
+        """The section's settings object (its defaults while the profile has none)."""
         value = (model or self.model).get(self.section)
         return self.factory() if value is None else value
 

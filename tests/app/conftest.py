@@ -72,3 +72,60 @@ def win(qtbot, settings, hbfd_profile):
 def eom_win(qtbot, settings):
     """The real main window on the Eom, Suh & Yi preset (wall and observer sections)."""
     yield from _main_window(qtbot, settings, load_profile(bundled_profiles()["eom"]))
+
+
+# -- screenshots: saved to tmp_path and checked, not just written -----------------------------------
+
+def distinct_colours(image, step: int = 7) -> int:
+    """How many colours a grid of sampled pixels has (a blank frame has one or two)."""
+    return len({image.pixel(x, y) for y in range(0, image.height(), step) for x in range(0, image.width(), step)})
+
+
+def coloured_fraction(image) -> float:
+    """The fraction of pixels that are clearly coloured (curves, markers, colour maps), not grey.
+
+    Backgrounds, grid lines, axes and text are grey levels; the plotted data is drawn in colour.
+    """
+    from PySide6.QtGui import QColor
+
+    n = hits = 0
+    for y in range(0, image.height(), 2):
+        for x in range(0, image.width(), 2):
+            c = QColor(image.pixel(x, y))
+            n += 1
+            hits += max(c.red(), c.green(), c.blue()) - min(c.red(), c.green(), c.blue()) > 60
+    return hits / max(n, 1)
+
+
+def plot_area(view):
+    """The image of a plot view's data area (inside the axes)."""
+    vb = view.plot.getViewBox()
+    rect = view.plot_widget.mapFromScene(vb.sceneBoundingRect()).boundingRect()
+    return view.plot_widget.grab(rect).toImage()
+
+
+@pytest.fixture
+def screenshot(tmp_path):
+    """``screenshot(window, name, views)``: save the window under tmp_path and check the image.
+
+    The saved file is read back: it must have the window's size and many colours, and the data
+    area of every plot view in ``views`` must show data (coloured pixels), not an empty frame.
+    """
+    from PySide6.QtGui import QImage
+
+    def take(window, name: str, views=()) -> QImage:
+        path = tmp_path / f"{name}.png"
+        pixmap = window.grab()
+        assert pixmap.save(str(path))
+        image = QImage(str(path))
+        assert (image.width(), image.height()) == (pixmap.width(), pixmap.height())
+        assert image.width() >= 1000 and image.height() >= 600
+        assert distinct_colours(image) > 50
+        for view in views:
+            area = plot_area(view)
+            assert area.width() > 100 and area.height() > 60, view.title
+            # an empty plot is ~0.2 % coloured (its legend's samples); these plots with data 0.7-40 %
+            assert coloured_fraction(area) > 0.005, f"no data drawn in {view.title}"
+        return image
+
+    return take

@@ -49,7 +49,7 @@ def test_hidden_tab_computes_nothing_until_shown(win, qtbot):
     qtbot.waitUntil(lambda: design.chart.upper.getOriginalDataset()[0] is not None, timeout=5000)
     # the chart equals the core's stiffness chart for the current device
     p = win.model.profile
-    bcs = np.geomspace(1.0, 1e4, g.node("design_chart").params["points"])
+    bcs = np.geomspace(1.0, 1e4, g.params("design_chart")["points"])
     ref = ImpedanceDisplay(p.device).stiffness_chart(bcs)
     x, y = design.chart.upper.getOriginalDataset()
     ok = np.isfinite(ref.kc)
@@ -75,9 +75,8 @@ def test_long_chart_runs_off_the_gui_thread_while_edits_are_served(win, qtbot):
     g = win.graph
     win.tabs.setCurrentWidget(win.tab(DesignTab))
     qtbot.waitUntil(lambda: g.is_fresh("design_chart"), timeout=20000)
-    node = g.node("design_chart")
-    node.params["points"] = 400  # a few seconds of work on the worker
-    inner = node.func
+    g.set_params("design_chart", points=400)  # a few seconds of work on the worker
+    inner = g.function("design_chart")
     threads: list[int] = []
     ticks_while_running = [0]
 
@@ -85,7 +84,7 @@ def test_long_chart_runs_off_the_gui_thread_while_edits_are_served(win, qtbot):
         threads.append(threading.get_ident())
         return inner(*args)
 
-    node.func = recording
+    g.replace_function("design_chart", recording)
 
     def tick() -> None:
         if win.runner.is_running("design_chart"):
@@ -102,7 +101,7 @@ def test_long_chart_runs_off_the_gui_thread_while_edits_are_served(win, qtbot):
         qtbot.wait(50)
         win.panel.fields["kc"].spin.setValue(kc)
         qtbot.waitUntil(lambda kc=kc: win.model.profile.kc == kc and g.is_fresh(g.stability_name)
-                        and not win._verdict_stale, timeout=5000)
+                        and not win.verdict_stale, timeout=5000)
         served_while_running.append(win.runner.is_running("design_chart"))
     qtbot.waitUntil(lambda: g.is_fresh("design_chart"), timeout=120000)
     timer.stop()
@@ -114,7 +113,7 @@ def test_long_chart_runs_off_the_gui_thread_while_edits_are_served(win, qtbot):
 
 def test_newer_request_supersedes_and_cancel_keeps_last_result(win, qtbot):
     g = win.graph
-    g.node("design_chart").params["points"] = 200
+    g.set_params("design_chart", points=200)
     win.tabs.setCurrentWidget(win.tab(DesignTab))
     qtbot.waitUntil(lambda: win.runner.is_running("design_chart"), timeout=5000)
     # a device change while it runs: the running job is superseded, its result dropped
@@ -122,15 +121,15 @@ def test_newer_request_supersedes_and_cancel_keeps_last_result(win, qtbot):
     qtbot.waitUntil(lambda: g.is_fresh("design_chart"), timeout=60000)
     assert g.calls("design_chart") == 2
     qtbot.waitUntil(lambda: win.runner.dropped >= 1 or win.runner.wait(0), timeout=10000)
-    value = g.node("design_chart").value
-    assert g.node("design_chart").value_key == g.key_of("design_chart")
+    value = g.result("design_chart")
+    assert g.is_fresh("design_chart")
     # cancel a new computation: the last good chart stays, the progress bar goes away
     win.panel.chain.fields[("masses", 0)].spin.setValue(0.35)
     qtbot.waitUntil(lambda: win.progress.active, timeout=5000)
     win.progress.cancel_button.click()
     assert not win.progress.active
     assert not win.runner.is_running("design_chart")
-    assert g.node("design_chart").value is value
+    assert g.result("design_chart") is value
     win.runner.wait(20000)
 
 

@@ -273,7 +273,7 @@ def test_recent_files_prune_missing(win, tmp_path, settings):
     assert settings.recent_files()[:2] == [str(b), str(a)]
     b.unlink()
     assert settings.recent_files() == [str(a)]
-    win._fill_recent()
+    win.fill_recent_menu()
     assert [act.text() for act in win.recent_menu.actions()][0] == "a.json"
 
 

@@ -73,7 +73,7 @@ def test_widgets_drive_the_plots(window, qtbot):
     settle(qtbot, tab)
     f = tab.fields["delta"]
     drag = window.editor.new_drag()
-    assert f._write(-0.5, drag) is None and f._write(-0.8, drag) is None
+    assert f.write(-0.5, drag) is None and f.write(-0.8, drag) is None
     settle(qtbot, tab)
     st = window.model.profile.observer
     assert (st.order, st.cutoff, st.preset, st.delta) == (3, 500.0, "five_bar_offset", -0.8)
@@ -100,7 +100,7 @@ def test_none_section_shows_defaults(window, qtbot):
     assert window.model.profile.observer is None
 
 
-def test_screenshot(window, qtbot):
-    show(window, qtbot)
+def test_screenshot(window, qtbot, screenshot):
+    tab = show(window, qtbot)
     qtbot.wait(50)
-    assert window.grab().save("/tmp/tab_observer.png")
+    screenshot(window, "tab_observer", tab.plot_views())

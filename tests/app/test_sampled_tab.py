@@ -99,14 +99,14 @@ def test_map_equals_stability_map(window, qtbot):
     np.testing.assert_allclose(tab.map_view.image.image, ref.spectral_radius, rtol=1e-12, atol=0)
     assert tab.map_view.xline.isVisible()  # hands-off: grasp mass 0 is off the log axis
     assert tab.set_map(x_range=(5.0, 1.0)) is not None  # refused, nothing changes
-    assert window.graph.node(MAP_NODE).params["x_range"] == (2e4, 2e5)
+    assert window.graph.params(MAP_NODE)["x_range"] == (2e4, 2e5)
 
 
 def test_exact_limit_equals_critical_stiffness_chart(window, qtbot):
     set_section(window, delay_samples=1)
     tab = show_tab(window, qtbot)
     p = window.model.profile
-    bcs = exact_grid(window.graph.node(EXACT_NODE).params)
+    bcs = exact_grid(window.graph.params(EXACT_NODE))
     ref = critical_stiffness_chart(p.device, bcs, delay_samples=1)
     np.testing.assert_array_equal(tab.exact_view.chart.kc, ref.kc)
     ok = np.isfinite(ref.kc) & (ref.kc > 0)
@@ -114,13 +114,13 @@ def test_exact_limit_equals_critical_stiffness_chart(window, qtbot):
     np.testing.assert_array_equal(x, bcs[ok])
     np.testing.assert_array_equal(y, ref.kc[ok])
     # the headline numbers: ~85.6 kN/m exact with one sample of delay against the 117 kN/m bound
-    limit = window.graph.node(LIMIT_NODE).value
+    limit = window.graph.result(LIMIT_NODE)
     assert limit == critical_stiffness(p.device, 100.0, 1)
     assert limit == pytest.approx(85.6e3, rel=1e-2)
     text = tab.summary.text()
     assert "85.58 kN/m" in text and "117.1 kN/m" in text and "not safe" in text
     # the two-port bound drawn is the design chart node's
-    chart = window.graph.node("design_chart").value.chart
+    chart = window.graph.result("design_chart").chart
     okb = np.isfinite(chart.kc) & (chart.kc > 0)
     np.testing.assert_array_equal(tab.exact_view.bound.xData, chart.bc[okb])
 
@@ -190,8 +190,7 @@ def test_cancel_keeps_last_result_and_can_rerun(window, qtbot):
     old_chart = tab.exact_view.chart
     # the first restart is held on the worker until it is cancelled: the test does not depend on
     # how long the real chart takes
-    node = g.node(EXACT_NODE)
-    real = node.func
+    real = g.function(EXACT_NODE)
     held = []
 
     def held_once(profile, params, progress, cancelled):
@@ -204,7 +203,7 @@ def test_cancel_keeps_last_result_and_can_rerun(window, qtbot):
                 time.sleep(0.005)
         return real(profile, params, progress, cancelled)
 
-    node.func = held_once
+    g.replace_function(EXACT_NODE, held_once)
     set_section(window, delay_samples=2)  # the exact chart restarts
     qtbot.waitUntil(lambda: window.runner.is_running(EXACT_NODE), timeout=5000)
     assert tab.progress[EXACT_NODE].running
@@ -222,9 +221,9 @@ def test_cancel_keeps_last_result_and_can_rerun(window, qtbot):
     assert tab.exact_view.chart.delay_samples == 2
 
 
-def test_screenshot(window, qtbot):
+def test_screenshot(window, qtbot, screenshot):
     set_section(window, delay_samples=1)
     tab = show_tab(window, qtbot)
     qtbot.wait(50)
-    assert window.grab().save("/tmp/tab_sampled.png")
+    screenshot(window, "tab_sampled", [tab.map_view, tab.exact_view, *tab.time_view.plot_views()])
     assert tab.map_view.export_series() and tab.exact_view.export_series() and tab.time_view.energy.export_series()

@@ -21,15 +21,15 @@ def show(window, qtbot) -> TransparencyTab:
     tab = window.tab(TransparencyTab)
     window.tabs.setCurrentWidget(tab)
     qtbot.waitUntil(lambda: window.graph.is_fresh("wall_tradeoff") and not tab.stale
-                    and tab._tradeoff_drawn is not None and window.graph.is_fresh("wall_point"), timeout=30000)
+                    and tab.tradeoff_drawn is not None and window.graph.is_fresh("wall_point"), timeout=30000)
     qtbot.waitUntil(lambda: tab.refreshes > 0 and tab.optimum_button.isEnabled(), timeout=30000)
     return tab
 
 
 def settle(window, qtbot, tab) -> None:
     qtbot.waitUntil(lambda: not tab.stale and window.graph.is_fresh("wall_tradeoff")
-                    and tab._tradeoff_drawn is not None
-                    and tab._tradeoff_drawn.curves is window.graph.node("wall_tradeoff").value.curves,
+                    and tab.tradeoff_drawn is not None
+                    and tab.tradeoff_drawn.curves is window.graph.result("wall_tradeoff").curves,
                     timeout=30000)
     qtbot.wait(20)
     tab.refresh()
@@ -121,10 +121,10 @@ def test_hold_model_choice(window, qtbot, hold):
     if hold == "discrete":
         # the finding: B_c = 15 is not robustly stable under the exact sampled loop
         assert tab.peak_plot.data("current")[1][0] == pytest.approx(10.7, abs=0.05)
-        assert tab._tradeoff_drawn.optimum.bc == pytest.approx(6.47, abs=0.01)
+        assert tab.tradeoff_drawn.optimum.bc == pytest.approx(6.47, abs=0.01)
         assert "NOT robustly stable" in tab.summary.text()
         tab.optimum_button.click()
-        assert tab.bc == pytest.approx(tab._tradeoff_drawn.optimum.bc, rel=1e-5)
+        assert tab.bc == pytest.approx(tab.tradeoff_drawn.optimum.bc, rel=1e-5)
     window.undo_stack.undo()
     assert window.model.profile.wall.hold == "lowpass2"
 
@@ -135,8 +135,8 @@ def test_none_section_shows_defaults_and_first_edit_creates_it(window, qtbot):
     assert tab.fields["mass"].spin.value() == WallSettings().mass
     check_plots(tab, WallSettings(), 15.0)
     drag = window.editor.new_drag()
-    assert tab.fields["wall_stiffness"]._write(2000.0, drag) is None
-    assert tab.fields["wall_stiffness"]._write(3000.0, drag) is None
+    assert tab.fields["wall_stiffness"].write(2000.0, drag) is None
+    assert tab.fields["wall_stiffness"].write(3000.0, drag) is None
     assert window.model.profile.wall == WallSettings(wall_stiffness=3000.0)
     assert window.undo_stack.count() == 1  # one drag, one undo step
     settle(window, qtbot, tab)
@@ -152,8 +152,8 @@ def test_refused_value_shows_reason(window, qtbot):
     assert window.model.profile.wall.alpha == 0.5
 
 
-def test_screenshot(window, qtbot):
+def test_screenshot(window, qtbot, screenshot):
     tab = show(window, qtbot)
     tab.fields["hold"].set_value("discrete")
     settle(window, qtbot, tab)
-    assert window.grab().save("/tmp/tab_transparency.png")
+    screenshot(window, "tab_transparency", tab.plot_views())

@@ -22,7 +22,8 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from analysis import AdmittanceDisplay, ImpedanceDisplay, grids
+from analysis import AdmittanceDisplay, ImpedanceDisplay
+from analysis.chain import grids
 from analysis.twoport.impedance import kc_upper
 
 from tests.benchmarks.common import hbfd, timeit
@@ -55,7 +56,7 @@ def _kc_rows(quick: bool) -> tuple[list[dict], dict]:
         lo, hi = grids.band_edges(dev)
 
         def f(x, imp=imp, T=T):
-            return kc_upper(imp._bound_parts(x).bound, x, T, BC)
+            return kc_upper(imp.bound_parts(x).bound, x, T, BC)
 
         ref = _dense_min(f, lo, hi, dense_points)
         pts = []
@@ -91,7 +92,7 @@ def _bc_rows(quick: bool) -> tuple[list[dict], dict]:
         lo, hi = grids.band_edges(dev)
 
         def upper(x, adm=adm):
-            return adm._limits(adm._bound_parts(x).bound, x, mc)[1]
+            return adm.inverse_damping_limits(adm.bound_parts(x).bound, x, mc)[1]
 
         ref_u = _dense_min(upper, lo, hi, dense_points)
         ref = 1.0 / ref_u
@@ -141,7 +142,7 @@ def _bound_rows(quick: bool) -> list[dict]:
         return out
 
     routes = {
-        "zwidth (cancellation-free)": lambda: ImpedanceDisplay(dev)._bound_parts(w).bound,
+        "zwidth (cancellation-free)": lambda: ImpedanceDisplay(dev).bound_parts(w).bound,
         "python-control (ss, c2d tustin) + literal eq. 9": lambda: control_route(dev, w)[1],
         "numpy n x n solve per frequency + literal eq. 9": dense_solve,
     }

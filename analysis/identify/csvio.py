@@ -1,0 +1,196 @@
+"""Measurement files: FRF and time-series CSV.
+
+Both are comma-separated with one header row; blank lines and lines starting with ``#`` are
+skipped (but counted, so that reported line numbers match an editor's).
+
+FRF files
+    Frequency: exactly one of ``frequency_hz`` or ``frequency_rad_s``.  Response: exactly one of
+    the sets ``real`` + ``imag``, ``magnitude`` + ``phase_deg``, ``magnitude_db`` + ``phase_deg``
+    (magnitude in the quantity's unit, m/N or N/N; ``magnitude_db = 20 log10 magnitude``).
+    Optional ``coherence`` in [0, 1].
+Time-series files
+    ``time_s``, ``force_n``, ``position_m`` (or a gauge reading in N in the third column when
+    the quantity is ``gauge``), uniformly sampled; turned into an FRF by
+    :func:`analysis.identify.estimate_frf`.
+
+Every problem raises :class:`~analysis.identify.MeasurementError` naming the file, the line
+(1-based, header = line 1; the message adds the 1-based data row) and the column: unreadable
+numbers, non-finite values, non-increasing frequency or time, non-positive magnitude,
+coherence outside [0, 1], unknown, missing, duplicate or mixed columns (both frequency units,
+or two response forms), and too few points.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from analysis.identify.errors import MeasurementError
+from analysis.identify.measurement import MIN_POINTS, Measurement, make_measurement
+
+__all__ = ["read_table", "read_frf", "read_timeseries", "load_measurement", "FRF_COLUMNS", "TIME_COLUMNS"]
+
+_FREQ = ("frequency_hz", "frequency_rad_s")
+_FORMS = (("real", "imag"), ("magnitude", "phase_deg"), ("magnitude_db", "phase_deg"))
+FRF_COLUMNS = (*_FREQ, "real", "imag", "magnitude", "magnitude_db", "phase_deg", "coherence")
+TIME_COLUMNS = ("time_s", "force_n", "position_m")
+
+
+@dataclass(frozen=True)
+class Table:
+    """Columns of a CSV file as float arrays, with the file line of each data row."""
+
+    path: str
+    columns: dict
+    lines: np.ndarray
+
+
+def read_table(path: str | os.PathLike, allowed: tuple[str, ...]) -> Table:
+    """Read a numeric CSV with a header naming only ``allowed`` columns (module doc)."""
+    name = os.fspath(path)
+    try:
+        with open(name, newline="", encoding="utf-8-sig") as fh:
+            rows = [(i + 1, r) for i, r in enumerate(csv.reader(fh))]
+    except OSError as exc:
+        raise MeasurementError(f"cannot read the file: {exc.strerror or exc}", file=name) from exc
+    except UnicodeDecodeError as exc:
+        raise MeasurementError("not a text (UTF-8) file", file=name) from exc
+    rows = [(ln, [c.strip() for c in r]) for ln, r in rows if r and any(c.strip() for c in r)
+            and not r[0].lstrip().startswith("#")]
+    if not rows:
+        raise MeasurementError("empty file: a header row is needed", file=name)
+    hline, header = rows[0]
+    header = [h.lower() for h in header]
+    for h in header:
+        if h not in allowed:
+            raise MeasurementError(f"unknown column (allowed: {', '.join(allowed)})", file=name, line=hline, column=h)
+        if header.count(h) > 1:
+            raise MeasurementError("duplicate column", file=name, line=hline, column=h)
+    data = {h: [] for h in header}
+    lines = []
+    for ln, r in rows[1:]:
+        if len(r) != len(header):
+            raise MeasurementError(f"{len(r)} values, the header has {len(header)} columns", file=name, line=ln)
+        for h, c in zip(header, r):
+            try:
+                v = float(c)
+            except ValueError:
+                raise MeasurementError(f"{c!r} is not a number", file=name, line=ln, column=h) from None
+            if not math.isfinite(v):
+                raise MeasurementError(f"{c!r} is not finite", file=name, line=ln, column=h)
+            data[h].append(v)
+        lines.append(ln)
+    return Table(name, {h: np.array(v, float) for h, v in data.items()}, np.array(lines, int))
+
+
+def _increasing(t: Table, column: str, positive: bool) -> None:
+    v = t.columns[column]
+    if positive and v.size and not v[0] > 0:
+        raise MeasurementError("must be > 0", file=t.path, line=int(t.lines[0]), column=column)
+    bad = np.flatnonzero(np.diff(v) <= 0)
+    if bad.size:
+        raise MeasurementError(f"must increase strictly ({v[bad[0] + 1]!r} after {v[bad[0]]!r})", file=t.path,
+                               line=int(t.lines[bad[0] + 1]), column=column)
+
+
+def _one_of(t: Table, options: tuple[str, ...], what: str, hline: int) -> str:
+    have = [c for c in options if c in t.columns]
+    if len(have) != 1:
+        if have:
+            raise MeasurementError(f"mixed units: both {' and '.join(have)} given for the {what}; keep one",
+                                   file=t.path, line=hline, column=have[1])
+        raise MeasurementError(f"no {what} column: one of {', '.join(options)} is needed", file=t.path, line=hline)
+    return have[0]
+
+
+def _response(t: Table, hline: int) -> np.ndarray:
+    """The complex response from exactly one of the response forms."""
+    present = [f for f in _FORMS if any(c in t.columns for c in f if c != "phase_deg")]
+    if len(present) != 1:
+        if present:
+            cols = [c for f in present for c in f if c != "phase_deg" and c in t.columns]
+            raise MeasurementError(f"mixed response forms: {' and '.join(cols)}; use one of real+imag, "
+                                   "magnitude+phase_deg, magnitude_db+phase_deg", file=t.path, line=hline,
+                                   column=cols[-1])
+        raise MeasurementError("no response columns: real+imag, magnitude+phase_deg or magnitude_db+phase_deg",
+                               file=t.path, line=hline)
+    a, b = present[0]
+    if b not in t.columns:
+        raise MeasurementError(f"column {b!r} is missing (it goes with {a!r})", file=t.path, line=hline, column=b)
+    x, y = t.columns[a], t.columns[b]
+    if a == "real":
+        h = x + 1j * y
+        zero = np.flatnonzero(h == 0)
+        if zero.size:
+            raise MeasurementError("response is exactly zero", file=t.path, line=int(t.lines[zero[0]]), column=a)
+        return h
+    if a == "magnitude":
+        bad = np.flatnonzero(x <= 0)
+        if bad.size:
+            raise MeasurementError(f"magnitude must be > 0, got {x[bad[0]]!r}", file=t.path,
+                                   line=int(t.lines[bad[0]]), column=a)
+    else:
+        x = 10.0 ** (x / 20.0)
+    return x * np.exp(1j * np.deg2rad(y))
+
+
+def read_frf(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, str]:
+    """Frequencies (rad/s), complex response, coherence (or ``None``) and the file name."""
+    t = read_table(path, FRF_COLUMNS)
+    hline = int(t.lines[0]) - 1 if t.lines.size else 1
+    fcol = _one_of(t, _FREQ, "frequency", hline)
+    h = _response(t, hline)
+    if t.lines.size < MIN_POINTS:
+        raise MeasurementError(f"{t.lines.size} data rows: at least {MIN_POINTS} are needed", file=t.path)
+    _increasing(t, fcol, positive=True)
+    w = t.columns[fcol] * (2 * math.pi if fcol == "frequency_hz" else 1.0)
+    coh = t.columns.get("coherence")
+    if coh is not None:
+        bad = np.flatnonzero((coh < 0) | (coh > 1))
+        if bad.size:
+            raise MeasurementError(f"coherence must be in [0, 1], got {coh[bad[0]]!r}", file=t.path,
+                                   line=int(t.lines[bad[0]]), column="coherence")
+    return w, h, coh, t.path
+
+
+def read_timeseries(path: str | os.PathLike, min_points: int = 64) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``time_s``, ``force_n``, ``position_m`` arrays of a time-series file (checked)."""
+    t = read_table(path, TIME_COLUMNS)
+    hline = int(t.lines[0]) - 1 if t.lines.size else 1
+    for c in TIME_COLUMNS:
+        if c not in t.columns:
+            raise MeasurementError("column is missing", file=t.path, line=hline, column=c)
+    if t.lines.size < min_points:
+        raise MeasurementError(f"{t.lines.size} samples: at least {min_points} are needed", file=t.path)
+    _increasing(t, "time_s", positive=False)
+    return t.columns["time_s"], t.columns["force_n"], t.columns["position_m"]
+
+
+def load_measurement(path: str | os.PathLike, quantity: str = "actuator", boundary: str = "free",
+                     sample_time: float | None = None, delay_samples: int = 0, **welch) -> Measurement:
+    """A :class:`~analysis.identify.Measurement` from an FRF file, or from a time-series file
+    (recognised by its ``time_s`` column) through :func:`analysis.identify.estimate_frf`
+    (``welch`` keyword arguments: ``nperseg``, ``noverlap``, ``window``)."""
+    name = os.fspath(path)
+    try:
+        with open(name, encoding="utf-8-sig") as fh:
+            head = next((ln for ln in fh if ln.strip() and not ln.lstrip().startswith("#")), "")
+    except OSError as exc:
+        raise MeasurementError(f"cannot read the file: {exc.strerror or exc}", file=name) from exc
+    except UnicodeDecodeError as exc:
+        raise MeasurementError("not a text (UTF-8) file", file=name) from exc
+    if "time_s" in [c.strip().lower() for c in head.split(",")]:
+        from analysis.identify.welch import estimate_frf
+
+        t, f, x = read_timeseries(name)
+        return estimate_frf(t, f, x, quantity=quantity, boundary=boundary, sample_time=sample_time,
+                            delay_samples=delay_samples, source=name, **welch)
+    w, h, coh, _ = read_frf(name)
+    try:
+        return make_measurement(w, h, quantity, boundary, sample_time, delay_samples, coh, source=name)
+    except MeasurementError as exc:
+        raise MeasurementError(exc.reason, file=name) from None

@@ -1,0 +1,112 @@
+"""Parameter keys of a chain and the map between a :class:`~analysis.Device` and vectors.
+
+Keys follow the profile's JSON names with 0-based indices: ``masses[i]`` (handle ``i = 0``,
+actuator ``i = n - 1``, Adams et al. eq. 25), ``stiffnesses[i]`` and ``dampings[i]`` (element
+``i`` joins mass ``i`` and ``i + 1``), ``ground_dampings[i]`` (damper from mass ``i`` to
+ground; the paper's rigid-body damping ``b4`` of the HBFD is ``ground_dampings[3]``).
+
+:class:`ChainParameters` is the batched form used by the model kernels: arrays of shape
+``(P, n)`` / ``(P, n - 1)`` for ``P`` parameter sets at once (finite-difference Jacobians and
+box searches evaluate many devices in one call).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from analysis.chain.device import Device
+from analysis.identify.errors import ParameterKeyError
+
+__all__ = ["FIELDS", "ChainParameters", "parameter_keys", "parse_key", "device_value",
+           "device_with", "device_values"]
+
+#: The four vector fields of a chain, in the order of :func:`parameter_keys`.
+FIELDS = ("masses", "stiffnesses", "dampings", "ground_dampings")
+_KEY = re.compile(r"^\s*(masses|stiffnesses|dampings|ground_dampings)\[(\d+)\]\s*$")
+
+
+def parse_key(key: str, n: int) -> tuple[str, int]:
+    """``"masses[2]"`` -> ``("masses", 2)``, checked against a chain of ``n`` masses."""
+    mt = _KEY.match(str(key))
+    if mt is None:
+        raise ParameterKeyError(key, "a key like masses[0], stiffnesses[1], dampings[0] or ground_dampings[3]")
+    name, i = mt.group(1), int(mt.group(2))
+    size = n if name in ("masses", "ground_dampings") else n - 1
+    if i >= size:
+        raise ParameterKeyError(key, f"index 0..{size - 1} for {name} of a {n}-mass chain")
+    return name, i
+
+
+def parameter_keys(n: int, ground: Iterable[int] | None = None) -> list[str]:
+    """Keys of an ``n``-mass chain: masses, stiffnesses, dampings, then the selected ground
+    dampings (``ground=None``: all ``n``)."""
+    gs = range(n) if ground is None else sorted(set(int(g) for g in ground))
+    return ([f"masses[{i}]" for i in range(n)] + [f"stiffnesses[{i}]" for i in range(n - 1)]
+            + [f"dampings[{i}]" for i in range(n - 1)] + [f"ground_dampings[{i}]" for i in gs])
+
+
+def device_value(device: Device, key: str) -> float:
+    """The value of one parameter of ``device``."""
+    name, i = parse_key(key, device.n)
+    return float(getattr(device, name)[i])
+
+
+def device_values(device: Device, keys: Iterable[str]) -> np.ndarray:
+    """The values of several parameters of ``device``."""
+    return np.array([device_value(device, k) for k in keys], dtype=float)
+
+
+def device_with(device: Device, values: Mapping[str, float]) -> Device:
+    """A copy of ``device`` with the given parameters changed (validated by :class:`Device`)."""
+    arrays = {f: np.array(getattr(device, f), dtype=float) for f in FIELDS}
+    for key, v in values.items():
+        name, i = parse_key(key, device.n)
+        arrays[name][i] = float(v)
+    return device.replace(**arrays)
+
+
+@dataclass(frozen=True)
+class ChainParameters:
+    """``P`` chains of ``n`` masses as arrays: ``masses`` (P, n), ``stiffnesses`` (P, n-1),
+    ``dampings`` (P, n-1), ``ground_dampings`` (P, n)."""
+
+    masses: np.ndarray
+    stiffnesses: np.ndarray
+    dampings: np.ndarray
+    ground_dampings: np.ndarray
+
+    @property
+    def n(self) -> int:
+        return int(self.masses.shape[1])
+
+    @property
+    def count(self) -> int:
+        return int(self.masses.shape[0])
+
+    @classmethod
+    def from_device(cls, device: Device) -> ChainParameters:
+        return cls(device.masses[None, :].copy(), device.stiffnesses[None, :].copy(),
+                   device.dampings[None, :].copy(), device.ground_dampings[None, :].copy())
+
+    @classmethod
+    def from_rows(cls, keys: list[str], rows: np.ndarray, base: ChainParameters) -> ChainParameters:
+        """``base`` (one chain) broadcast to ``len(rows)`` chains with ``keys`` set from ``rows``."""
+        rows = np.atleast_2d(np.asarray(rows, dtype=float))
+        P = rows.shape[0]
+        arrays = {f: np.repeat(getattr(base, f)[:1], P, axis=0) for f in FIELDS}
+        for j, key in enumerate(keys):
+            name, i = parse_key(key, base.n)
+            arrays[name][:, i] = rows[:, j]
+        return cls(**arrays)
+
+    def device(self, row: int, template: Device | None = None, **kwargs) -> Device:
+        """Chain ``row`` as a :class:`Device` (sensor element, sample time and band from
+        ``template`` or ``kwargs``)."""
+        data = {f: getattr(self, f)[row] for f in FIELDS}
+        if template is not None:
+            return template.replace(**data, **kwargs)
+        return Device(**data, **kwargs)

@@ -1,0 +1,107 @@
+"""Result records of the identification (frozen dataclasses of numpy arrays; nothing draws)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from analysis.chain.device import Device
+from analysis.identify.measurement import Measurement
+
+__all__ = ["ChainFit", "OrderSelection", "Parameter"]
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One row of the parameter table."""
+
+    key: str
+    value: float
+    std_error: float  # absolute, by the delta method value * sigma_log; 0 for a fixed parameter
+    low: float  # 95 % interval exp(theta - 1.96 sigma)
+    high: float  # exp(theta + 1.96 sigma)
+    fixed: bool
+    identifiable: bool
+
+
+@dataclass(frozen=True, eq=False)
+class ChainFit:
+    """A fitted chain with its uncertainty (see :mod:`analysis.identify.fit`).
+
+    Attributes
+    ----------
+    device:
+        The fitted :class:`~analysis.Device`.
+    keys, values, std_errors, lower, upper, fixed:
+        The parameter table, one entry per key (fixed parameters have zero error and a point
+        interval).  ``log_std`` is the standard error of ``log(value)``.
+    free_keys, covariance, correlation:
+        Covariance ``s^2 (J^T J)^{-1}`` of the free log-parameters and its correlation matrix.
+    residual:
+        RMS of the weighted real residual vector (log-magnitude and phase in rad).
+    cost, rss, aic, bic, n_residuals, dof:
+        ``cost = rss / 2``; ``AIC = R ln(RSS/R) + 2p``, ``BIC = R ln(RSS/R) + p ln R``.
+    responses:
+        Model response at the measured frequencies, one array per measurement.
+    non_identifiable, suggestions:
+        Keys judged not identifiable from these measurements, and for each what would fix it.
+    warnings:
+        Human-readable notes (non-convergence, non-identifiable parameters, ...).
+    """
+
+    device: Device
+    keys: tuple[str, ...]
+    values: np.ndarray
+    std_errors: np.ndarray
+    log_std: np.ndarray
+    lower: np.ndarray
+    upper: np.ndarray
+    fixed: np.ndarray
+    free_keys: tuple[str, ...]
+    covariance: np.ndarray
+    correlation: np.ndarray
+    residual: float
+    cost: float
+    rss: float
+    aic: float
+    bic: float
+    n_residuals: int
+    dof: int
+    responses: tuple[np.ndarray, ...]
+    measurements: tuple[Measurement, ...]
+    non_identifiable: tuple[str, ...]
+    suggestions: dict
+    warnings: tuple[str, ...]
+    converged: bool
+    evaluations: int
+    starts: int
+
+    @property
+    def intervals(self) -> dict[str, tuple[float, float]]:
+        """``{key: (low, high)}`` at 95 % for every parameter (a fixed one: its value twice)."""
+        return {k: (float(lo), float(hi)) for k, lo, hi in zip(self.keys, self.lower, self.upper)}
+
+    @property
+    def parameters(self) -> tuple[Parameter, ...]:
+        """The parameter table as rows."""
+        bad = set(self.non_identifiable)
+        return tuple(Parameter(k, float(v), float(e), float(lo), float(hi), bool(f), k not in bad)
+                     for k, v, e, lo, hi, f in zip(self.keys, self.values, self.std_errors, self.lower,
+                                                   self.upper, self.fixed))
+
+    def value(self, key: str) -> float:
+        return float(self.values[self.keys.index(key)])
+
+
+@dataclass(frozen=True, eq=False)
+class OrderSelection:
+    """Fits of ``n = 1..N`` masses with their criteria (lower AIC/BIC is better)."""
+
+    n: np.ndarray
+    aic: np.ndarray
+    bic: np.ndarray
+    residual: np.ndarray
+    fits: tuple[ChainFit | None, ...]
+    errors: tuple[str | None, ...]
+    best_bic: int | None

@@ -1,0 +1,113 @@
+"""Named, unit-labelled quantities and the one rule that prints them.
+
+The GUI verdict, ``zwidth analyze`` and the report print every headline number through
+:meth:`Quantity.format`, so the three say the same thing in the same way.  The stability
+reserve (the smallest ``1 - bound/coupling term`` over the band, eq. 9 or 21) is a fraction
+in the data and is printed in per cent everywhere.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Any
+
+__all__ = ["Quantity", "QUANTITIES", "quantity", "format_number", "DIGITS"]
+
+#: significant digits of a printed number unless a quantity says otherwise
+DIGITS = 6
+
+
+def _rich(text: str) -> str:
+    """``1.2e+05`` -> ``1.2×10<sup>5</sup>`` and a true minus sign (Qt rich text / HTML)."""
+    if "e" in text:
+        mant, exp = text.split("e")
+        text = f"{mant}×10<sup>{int(exp)}</sup>"
+    return text.replace("-", "−")
+
+
+def format_number(value: Any, digits: int = DIGITS, *, scale: float = 1.0, rich: bool = False) -> str:
+    """A number as zwidth prints it: ``None`` -> "infeasible", NaN -> "n/a",
+    +-inf -> "unbounded"/"-unbounded", booleans -> "yes"/"no", else ``digits`` significant digits."""
+    if value is None:
+        return "infeasible"
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return "yes" if value else "no"
+    x = float(value)
+    if math.isnan(x):
+        return "n/a"
+    if math.isinf(x):
+        return "unbounded" if x > 0 else ("−unbounded" if rich else "-unbounded")
+    text = f"{x * scale:.{digits}g}"
+    return _rich(text) if rich else text
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A result's key, name, symbol (plain text, e.g. ``k_max``), unit, and how it is printed."""
+
+    key: str
+    name: str
+    symbol: str = ""
+    unit: str = ""
+    digits: int = DIGITS
+    scale: float = 1.0  # printed value = value * scale (100 for a fraction printed in %)
+
+    def number(self, value: Any, *, rich: bool = False) -> str:
+        """The printed number without its unit."""
+        return format_number(value, self.digits, scale=self.scale, rich=rich)
+
+    def format(self, value: Any, *, unit: bool = True, rich: bool = False) -> str:
+        """The printed number with its unit (no unit after a word such as "unbounded")."""
+        text = self.number(value, rich=rich)
+        finite = value is not None and not isinstance(value, bool) and math.isfinite(float(value))
+        return f"{text} {self.unit}" if unit and self.unit and finite else text
+
+    def parse(self, text: str) -> float:
+        """The value back from :meth:`format`'s plain text (tests compare printed outputs)."""
+        word = text.split()[0] if text.split() else text
+        special = {"unbounded": math.inf, "-unbounded": -math.inf, "n/a": math.nan}
+        if word in special:
+            return special[word]
+        return float(word.replace("−", "-")) / self.scale
+
+
+_RAD_S = "rad/s"
+_NSM = "N·s/m"
+
+#: the headline quantities (``worst_margin``'s unit depends on the display: see :func:`quantity`)
+QUANTITIES: dict[str, Quantity] = {q.key: q for q in (
+    Quantity("stable", "unconditionally stable"),
+    Quantity("stability_reserve", "stability reserve", "", "%", digits=4, scale=100.0),
+    Quantity("binding_frequency", "binding frequency", "", _RAD_S),
+    Quantity("worst_margin", "worst margin", "", ""),
+    Quantity("worst_frequency", "worst-margin frequency", "", _RAD_S),
+    Quantity("min_eta", "smallest Llewellyn factor", "η_min"),
+    Quantity("k_max", "largest renderable stiffness", "k_max", "N/m"),
+    Quantity("b_min", "smallest renderable damping", "b_min", _NSM),
+    Quantity("apparent_mass", "apparent free-motion mass", "", "kg"),
+    Quantity("apparent_damping", "apparent free-motion damping", "", _NSM),
+    Quantity("kc", "coupling stiffness", "k_c", "N/m"),
+    Quantity("kp", "PD position-loop stiffness", "k_p", "N/m"),
+    Quantity("kd", "PD position-loop damping", "k_d", _NSM),
+    Quantity("bc", "for coupling damping", "b_c", _NSM),
+    Quantity("kc_max", "largest stable coupling stiffness", "k_c,max", "N/m"),
+    Quantity("kc_max_frequency", "binding frequency", "", _RAD_S),
+    Quantity("mc", "for coupling mass", "m_c", "kg"),
+    Quantity("bc_low", "feasible damping, lower edge", "b_c,low", _NSM),
+    Quantity("bc_low_frequency", "binding frequency (lower)", "", _RAD_S),
+    Quantity("bc_high", "feasible damping, upper edge", "b_c,high", _NSM),
+    Quantity("bc_high_frequency", "binding frequency (upper)", "", _RAD_S),
+    Quantity("min_mc", "smallest stable coupling mass", "m_c,min", "kg"),
+    Quantity("min_mc_bc", "with damping", "b_c", _NSM),
+    Quantity("min_mc_frequency", "binding frequency", "", _RAD_S),
+)}
+
+
+def quantity(key: str, margin_unit: str | None = None) -> Quantity:
+    """The quantity ``key``; ``margin_unit`` (the display's, see ``DisplayKind.margin_unit``)
+    completes the worst margin, whose unit is that of eq. (9) or (21)."""
+    q = QUANTITIES[key]
+    if key == "worst_margin" and margin_unit is not None:
+        return replace(q, unit=margin_unit)
+    return q

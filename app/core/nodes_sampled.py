@@ -1,0 +1,131 @@
+"""The nodes of the sampled-data tab: the exact loop behind the two-port bounds.
+
+* ``sampled_map`` -- the spectral radius of the real sampled loop over two parameters;
+* ``sampled_exact_chart`` -- the exact stability limit over b_c;
+* ``sampled_limit`` -- the exact limit at the current b_c;
+* ``sampled_simulation`` -- one run of the nonlinear simulator on the profile's scenario.
+
+All four are asynchronous: they call the study layer (:mod:`analysis.study`) on the worker with
+its progress and cancel hooks, and each call builds its own objects.  The delays, the scenario and
+the simulator options are the profile's ``simulation`` section; the map's axes and ranges are node
+parameters (the display object's map definition by default).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable
+from typing import Any
+
+import numpy as np
+
+from analysis.profiles.io import Profile
+from analysis.profiles.sections import SimulationSection
+from analysis.sampled import CriticalChart, CriticalMassChart, SimulationResult, StabilityMap
+from analysis.study import (
+    DISPLAY_KINDS,
+    EXACT_CHART,
+    MAP_POINTS,
+    delays,
+    display_kind,
+    exact_chart,
+    exact_limit,
+    map_arguments,
+    simulation,
+    simulation_section,
+    stability_map,
+)
+
+from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress
+from app.core.nodes_stability import DEVICE_INPUTS, GAIN_FIELDS
+
+__all__ = ["MAP_NODE", "EXACT_NODE", "LIMIT_NODE", "SIM_NODE", "ASYNC_NODES", "MAP_AXES", "DEFAULT_RANGES",
+           "MAP_POINTS", "PARAMETER_LABELS", "EXACT_BC_RANGE", "EXACT_POINTS", "current_section", "delays",
+           "map_arguments", "default_map_settings", "exact_grid", "register"]
+
+MAP_NODE, EXACT_NODE, LIMIT_NODE, SIM_NODE = "sampled_map", "sampled_exact_chart", "sampled_limit", "sampled_simulation"
+ASYNC_NODES = (MAP_NODE, EXACT_NODE, LIMIT_NODE, SIM_NODE)
+
+#: The map axes offered for each display type (x, y) -- the display objects' map definitions.
+MAP_AXES: dict[str, list[tuple[str, str]]] = {name: list(k.map_axes) for name, k in DISPLAY_KINDS.items()}
+DEFAULT_RANGES: dict[tuple[str, str], tuple[float, float]] = {
+    (name, p): r for name, k in DISPLAY_KINDS.items() for p, r in k.map_ranges.items()}
+#: Map parameter names of :data:`analysis.sampled.MAP_PARAMETERS` -> (axis label, unit).
+PARAMETER_LABELS: dict[str, tuple[str, str]] = {
+    "kc": ("k_c", "N/m"), "bc": ("b_c", "N·s/m"), "mc": ("m_c", "kg"), "kp": ("k_p", "N/m"),
+    "kd": ("k_d", "N·s/m"), "kobj": ("k_obj", "N/m"), "bobj": ("b_obj", "N·s/m"), "me": ("m_e", "kg"),
+    "grasp_mass": ("grasp mass", "kg"), "grasp_damping": ("grasp damping", "N·s/m"),
+    "grasp_stiffness": ("grasp stiffness", "N/m"),
+}
+EXACT_BC_RANGE, EXACT_POINTS = EXACT_CHART["bc_range"], EXACT_CHART["points"]
+
+
+def current_section(profile: Profile) -> SimulationSection:
+    """The profile's simulation section, or the paper's worst case for its display (ideal sensors)."""
+    return simulation_section(profile)
+
+
+def default_map_settings(display: str) -> dict[str, Any]:
+    """The map parameters a display starts with: its first axes, their default ranges."""
+    kind = display_kind(display)
+    x, y = kind.map_axes[0]
+    return {"x": x, "x_range": kind.map_ranges[x], "y": y, "y_range": kind.map_ranges[y], "points": MAP_POINTS}
+
+
+def _pd(p: Profile) -> tuple[float, float] | None:
+    """The PD loop's gains where they matter (admittance display, eq. 30)."""
+    return None if display_kind(p).is_impedance else (p.kp, p.kd)
+
+
+def _map_key(p: Profile, params: dict) -> Hashable:
+    return (p.device.key(), p.display, display_kind(p).coupling(p), (p.kp, p.kd), delays(p),
+            tuple(sorted((k, v) for k, v in params.items())))
+
+
+def _map(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> StabilityMap | None:
+    return stability_map(p, dict(params), progress=progress, cancelled=cancelled)
+
+
+def exact_grid(params: dict) -> np.ndarray:
+    """The b_c grid of the exact limit chart (node parameters ``bc_range`` and ``points``)."""
+    return np.geomspace(*params["bc_range"], int(params["points"]))
+
+
+def _exact_key(p: Profile, params: dict) -> Hashable:
+    return (p.device.key(), p.display, _pd(p), delays(p), params["bc_range"], params["points"])
+
+
+def _exact_chart(p: Profile, params: dict, progress: Progress, cancelled: Cancelled
+                 ) -> CriticalChart | CriticalMassChart | None:
+    return exact_chart(p, bc_range=params["bc_range"], points=int(params["points"]), progress=progress,
+                       cancelled=cancelled)
+
+
+def _limit_key(p: Profile, params: dict) -> Hashable:
+    return (p.device.key(), p.display, display_kind(p).coupling(p)[1], _pd(p), delays(p))
+
+
+def _limit(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> float:
+    """The exact limit at the current b_c: largest stable k_c or smallest stable m_c."""
+    progress(0, 1)
+    v = exact_limit(p)
+    progress(1, 1)
+    return v
+
+
+def _sim_key(p: Profile, params: dict) -> Hashable:
+    return (p.device.key(), p.display, display_kind(p).coupling(p), (p.kp, p.kd), current_section(p))
+
+
+def _simulation(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> SimulationResult | None:
+    return simulation(p, progress=progress, cancelled=cancelled)
+
+
+def register(graph: ComputeGraph) -> None:
+    """Add the four sampled-data nodes to ``graph``."""
+    sim_inputs = DEVICE_INPUTS | GAIN_FIELDS | {"simulation"}
+    graph.add(Node(MAP_NODE, sim_inputs, _map_key, _map, asynchronous=True,
+                   params=default_map_settings("impedance")))
+    graph.add(Node(EXACT_NODE, DEVICE_INPUTS | {"display", "kp", "kd", "simulation"}, _exact_key, _exact_chart,
+                   asynchronous=True, params={"bc_range": EXACT_BC_RANGE, "points": EXACT_POINTS}))
+    graph.add(Node(LIMIT_NODE, DEVICE_INPUTS | GAIN_FIELDS | {"simulation"}, _limit_key, _limit, asynchronous=True))
+    graph.add(Node(SIM_NODE, sim_inputs, _sim_key, _simulation, asynchronous=True))

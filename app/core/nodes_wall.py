@@ -1,0 +1,79 @@
+"""The nodes of the transparency tab: the wall controller of Eom, Suh & Yi (section 3, Figs. 7-10).
+
+``wall_design`` is the :class:`WallDesign` of the profile's wall section; ``wall_tradeoff`` (J and
+‖L‖∞ over B_c, eqs. 11 and 16-17, and the robust optimum) runs on the worker; ``wall_point``,
+``wall_step`` and ``wall_admittance`` are cheap and evaluated at the node parameter ``bc`` (the
+tab's current B_c, which is not a profile field).  Every node calls :mod:`analysis.study`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Hashable
+from typing import Any
+
+from analysis.profiles.io import Profile
+from analysis.study import (
+    DEFAULT_BC,
+    WallAdmittances,
+    WallPoint,
+    WallTradeoff,
+    admittance_grid,
+    wall_admittances,
+    wall_design,
+    wall_point,
+    wall_settings,
+    wall_step,
+    wall_tradeoff,
+)
+
+from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress, Pull
+from app.core.model import DEVICE_FIELDS
+
+__all__ = ["DEFAULT_BC", "NODES", "AT_BC_NODES", "HOLD_LABELS", "PLANT_LABELS", "wall_settings", "wall_design",
+           "WallTradeoff", "WallPoint", "WallAdmittances", "admittance_grid", "register"]
+
+NODES = ("wall_design", "wall_tradeoff", "wall_point", "wall_step", "wall_admittance")
+#: The nodes evaluated at the current B_c (node parameter ``bc``).
+AT_BC_NODES = ("wall_point", "wall_step", "wall_admittance")
+_INPUTS = frozenset({"wall"}) | frozenset(DEVICE_FIELDS)
+#: The hold models of ``WallSettings.hold`` and the plants of ``WallSettings.plant``, for people.
+HOLD_LABELS = {
+    "none": "none: H = 1 (no hold)",
+    "pade": "Padé: half-sample delay, 1st order",
+    "lowpass2": "2nd-order low-pass at Nyquist (paper)",
+    "zoh": "ZOH: (1 − e^(−sT))/(sT)",
+    "discrete": "exact sampled loop (discrete)",
+}
+PLANT_LABELS = {"rigid": "rigid handle: m, b below", "chain": "the profile's device chain"}
+
+
+def _design_key(p: Profile, params: dict) -> Hashable:
+    st = wall_settings(p)
+    return st, (p.device.key() if st.plant == "chain" else None)
+
+
+def _at_bc_key(p: Profile, params: dict) -> Hashable:
+    return _design_key(p, params), float(params["bc"])
+
+
+def _tradeoff(profile: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> WallTradeoff | None:
+    return wall_tradeoff(profile, progress=progress, cancelled=cancelled)  # its own WallDesign, never shared
+
+
+def _at_bc_node(name: str, func: Callable[[Any, float], Any]) -> Node:
+    """A synchronous node: ``func(design, bc)`` at its parameter ``bc`` (the tab's current B_c)."""
+    params = {"bc": DEFAULT_BC}
+
+    def compute(_p: Profile, pull: Pull) -> Any:
+        return func(pull("wall_design"), float(params["bc"]))
+
+    return Node(name, _INPUTS, _at_bc_key, compute, params=params)
+
+
+def register(graph: ComputeGraph) -> None:
+    """Add the wall controller's nodes to ``graph``."""
+    graph.add(Node("wall_design", _INPUTS, _design_key, lambda p, _: wall_design(p)))
+    graph.add(Node("wall_tradeoff", _INPUTS, _design_key, _tradeoff, asynchronous=True))
+    graph.add(_at_bc_node("wall_point", wall_point))
+    graph.add(_at_bc_node("wall_step", wall_step))
+    graph.add(_at_bc_node("wall_admittance", wall_admittances))

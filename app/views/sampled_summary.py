@@ -1,0 +1,119 @@
+"""The texts of the sampled-data tab: the map's subtitle, the exact-limit summary, the scenario note.
+
+Rich text for Qt labels; the numbers are the graph's (the exact sampled loop of
+``analysis.sampled`` against the two-port bound of eq. 9 / eq. 21).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from analysis.profiles.io import Profile
+from analysis.profiles.sections import SimulationSection
+from analysis.sampled import RIGID_GRASP, SimulationOptions, StabilityMap
+from analysis.sampled.terminations import PAPER_WALL_STIFFNESS
+from analysis.study import display_kind, map_point
+
+from app.views.base import plain
+
+__all__ = ["map_subtitle", "design_on_map", "exact_summary", "scenario_note"]
+
+_GOOD, _BAD = "#2b8a3e", "#c92a2a"
+
+
+def _delay_text(d: int, impl: bool) -> str:
+    return f"delay {d} sample(s)" + (" + implementation" if impl else "")
+
+
+def map_subtitle(p: Profile, m: StabilityMap, d: int, impl: bool) -> str:
+    """Who holds the handle, what it touches and which gains are fixed on the map."""
+    names = {m.x_name, m.y_name}
+    if display_kind(p).is_impedance:
+        env = "" if "kobj" in names else f"penalty wall k_obj = {PAPER_WALL_STIFFNESS / 1e3:g} kN/m"
+        who = "hands-off" if not names & {"grasp_mass", "grasp_stiffness"} else "grasp (other terms 0)"
+        fixed = f"k_c = {p.kc:g} N/m" if "kc" not in names else f"b_c = {p.bc:g} N·s/m"
+        if names == {"kc", "bc"}:
+            fixed = ""
+    else:
+        env = "free motion"
+        g = RIGID_GRASP
+        who = f"rigid grasp ({g.mass:g} kg, {g.damping:g} N·s/m, {g.stiffness:g} N/m)"
+        fixed = f"b_c = {p.bc_adm:g} N·s/m, k_p = {p.kp:g}, k_d = {p.kd:g}" if "bc" not in names else \
+            f"k_p = {p.kp:g}, k_d = {p.kd:g}"
+    return "; ".join(x for x in (who, env, fixed, _delay_text(d, impl)) if x)
+
+
+def design_on_map(p: Profile, m: StabilityMap) -> tuple[float, float | None]:
+    """Where the current design sits on the map (y is ``None`` when the map's y is not one of its values)."""
+    return map_point(p, m.x_name, m.y_name)
+
+
+def _impedance_summary(p: Profile, limit: float | None, bound: float | None, delay: str) -> str:
+    bound_txt = "none" if bound is None else f"{plain(bound / 1e3, 4)} kN/m"
+    if limit is None:
+        exact_txt = "computing…"
+    elif limit == 0:
+        exact_txt = "<b>unstable for every k_c</b>"
+    elif math.isinf(limit):
+        exact_txt = "no limit below 10⁹ N/m"
+    else:
+        exact_txt = f"<b>{plain(limit / 1e3, 4)} kN/m</b>"
+    text = (f"Largest stable k_c at b_c = {plain(p.bc)} N·s/m — exact sampled loop ({delay}, hands-off, "
+            f"rigid god-object wall): {exact_txt};  two-port bound (eq. 9, delay-free model): {bound_txt}.  "
+            f"Current k_c = {plain(p.kc / 1e3, 4)} kN/m")
+    if limit is not None and math.isfinite(limit):
+        ok = p.kc < limit
+        text += (f" is <span style='color:{_GOOD}'>below the exact limit</span>." if ok else
+                 f" is <span style='color:{_BAD}'><b>above the exact limit: the loop is unstable</b></span>.")
+        if bound is not None and limit < bound:
+            text += (f"  <span style='color:{_BAD}'>⚠ The two-port bound is not safe here: the exact limit is "
+                     f"{100 * (1 - limit / bound):.0f} % lower (the bound assumes no delay).</span>")
+        elif bound is not None and limit > bound:
+            text += f"  The bound is conservative by a factor {limit / bound:.2g}."
+    return text
+
+
+def _admittance_summary(p: Profile, limit: float | None, delay: str) -> str:
+    if limit is None:
+        exact_txt = "computing…"
+    elif math.isinf(limit):
+        exact_txt = "<b>no stable m_c</b>"
+    elif limit == 0:
+        exact_txt = "every m_c ≥ 1 g stable"
+    else:
+        exact_txt = f"<b>{plain(limit, 4)} kg</b>"
+    text = (f"Smallest stable m_c at b_c = {plain(p.bc_adm)} N·s/m — exact sampled loop ({delay}, rigid grasp, "
+            f"free motion): {exact_txt}.  Current m_c = {plain(p.mc)} kg")
+    if limit is not None and math.isfinite(limit) and limit > 0:
+        text += (f" is <span style='color:{_GOOD}'>above it</span>." if p.mc > limit else
+                 f" is <span style='color:{_BAD}'><b>below it: the loop is unstable</b></span>.")
+    return text
+
+
+def exact_summary(p: Profile, limit: float | None, bound: float | None, d: int, impl: bool) -> str:
+    """The exact limit at the current b_c against the two-port bound (``bound``: largest k_c, eq. 9)."""
+    delay = f"{d}-sample computation delay" if d else "no computation delay"
+    if impl:
+        delay += " + implementation delay"
+    if display_kind(p).is_impedance:
+        return _impedance_summary(p, limit, bound, delay)
+    return _admittance_summary(p, limit, delay)
+
+
+def scenario_note(sec: SimulationSection, fresh: bool) -> str:
+    """What was simulated: grasp, environment, effects and delays."""
+    sc, o = sec.scenario, sec.options
+    ideal = dataclasses.replace(o, delay_samples=0, implementation_delay=False) == SimulationOptions()
+    effects = "ideal sensors and actuator" if ideal else "with quantization / friction / saturation"
+    grasp = "hands-off" if sc.grasp.hands_off else (
+        f"grasp {sc.grasp.mass:g} kg, {sc.grasp.damping:g} N·s/m, {sc.grasp.stiffness:g} N/m"
+        f"{f' until {sc.release_time:g} s' if math.isfinite(sc.release_time) else ''}")
+    env = ("no wall" if not sc.wall else
+           f"penalty wall {sc.wall_stiffness:g} N/m" if display_kind(sc.causality).is_impedance else "god-object wall")
+    note = (f"Scenario: {sc.name.replace('_', ' ')} ({grasp}; {env}); {effects}; delay {o.delay_samples} sample(s)"
+            f"{', implementation delay' if o.implementation_delay else ''}.  The exact limit above is for "
+            "hands-off against a rigid wall, so a damped grasp can be stable beyond it.")
+    if not fresh:
+        note += "  (result of the previous inputs)"
+    return note

@@ -1,0 +1,141 @@
+"""Identification benchmarks (issue 14: measurements -> chain model -> robust designs).
+
+* 4-mass fit of the HBFD on 400 points (1 kHz ZOH-sampled actuator FRF, handle free, from the
+  automatic start; target 1 s), noise-free: largest relative parameter error;
+* the same with 1 % complex Gaussian noise on the actuator and gauge FRFs;
+* Welch H1 FRF estimation from 60 s of 1 kHz data (target 200 ms) and its error where the
+  coherence exceeds 0.99;
+* robust largest k_c (eq. 9, b_c = 100) over +-10 % intervals on all 14 HBFD parameters (zero
+  ground dampings in [0, 0.5]; target 2 s), and the seed's b4 in [1.2, 5] case;
+* run time against error for the number of frequencies and the noise level;
+* coverage of the 95 % intervals over 100 seeded replicates at 1 % noise (actuator + gauge; and
+  the actuator alone, where the handle side is not identifiable), with the k_c error.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy import signal
+
+from analysis import ImpedanceDisplay
+from analysis.chain import chain_state_space, discretize_zoh
+from analysis.identify import (
+    device_response,
+    device_value,
+    estimate_frf,
+    fit_chain,
+    make_measurement,
+    robust_max_stiffness,
+)
+
+from tests.benchmarks.common import hbfd, timeit
+
+T = 1e-3
+
+
+def _measurements(dev, n_freq: int, noise: float, seed: int, quantities=("actuator",)):
+    w = np.geomspace(1.0, 0.95 * math.pi / T, n_freq)
+    rng = np.random.default_rng(seed)
+    out = []
+    for q in quantities:
+        h = device_response(dev, w, q, "free", sample_time=T)
+        if noise:
+            h = h * (1 + noise * (rng.normal(size=w.size) + 1j * rng.normal(size=w.size)) / math.sqrt(2))
+        out.append(make_measurement(w, h, q, "free", sample_time=T))
+    return out
+
+
+def _max_error(fit, dev) -> float:
+    return float(max(abs(fit.value(k) / device_value(dev, k) - 1) for k in fit.keys))
+
+
+def _fit_rows(dev, quick: bool) -> list[dict]:
+    rows = []
+    ms = _measurements(dev, 400, 0.0, 0)
+    fit = fit_chain(ms, 4, ground_dampings=(3,))
+    t = timeit(lambda: fit_chain(ms, 4, ground_dampings=(3,)), repeat=1 if quick else 7)
+    rows.append({"name": "4-mass fit, 400 points, noise-free actuator FRF", **t, "target_ms": 1000.0,
+                 "max_rel_error": _max_error(fit, dev)})
+    ms = _measurements(dev, 400, 0.01, 1, ("actuator", "gauge"))
+    fit = fit_chain(ms, 4, ground_dampings=(3,))
+    t = timeit(lambda: fit_chain(ms, 4, ground_dampings=(3,)), repeat=1 if quick else 7)
+    rows.append({"name": "4-mass fit, 2 x 400 points, 1 % noise, actuator + gauge", **t, "target_ms": 1000.0,
+                 "max_rel_error": _max_error(fit, dev)})
+    return rows
+
+
+def _frf_rows(dev, quick: bool) -> list[dict]:
+    A, B = chain_state_space(dev)
+    Phi, Gam = discretize_zoh(A[0], -B[0][:, :1], T)
+    C = np.zeros((1, A.shape[-1]))
+    C[0, dev.n - 1] = 1.0
+    n = 60_000
+    u = np.random.default_rng(0).normal(0.0, 10.0, n)
+    _, y, _ = signal.dlsim((Phi, Gam, C, np.zeros((1, 1)), T), u)
+    t = np.arange(n) * T
+    m = estimate_frf(t, u, y[:, 0], sample_time=T)
+    good = m.coherence > 0.99
+    err = np.abs(m.response[good] / device_response(dev, m.frequency[good], sample_time=T) - 1)
+    tm = timeit(lambda: estimate_frf(t, u, y[:, 0], sample_time=T), repeat=3 if quick else 20)
+    return [{"name": "Welch H1 FRF from 60 s at 1 kHz (nperseg 4096)", **tm, "target_ms": 200.0,
+             "median_rel_error": float(np.median(err)), "max_rel_error": float(np.max(err)),
+             "bins_coherence_0.99": int(np.count_nonzero(good))}]
+
+
+def _robust_rows(dev, quick: bool) -> list[dict]:
+    iv = {}
+    for field in ("masses", "stiffnesses", "dampings", "ground_dampings"):
+        for i, v in enumerate(getattr(dev, field)):
+            iv[f"{field}[{i}]"] = (0.9 * v, 1.1 * v) if v > 0 else (0.0, 0.5)
+    r = robust_max_stiffness(dev, 100.0, iv)
+    t = timeit(lambda: robust_max_stiffness(dev, 100.0, iv), repeat=1 if quick else 5)
+    rows = [{"name": "robust k_c over 14 HBFD parameters (+-10 %)", **t, "target_ms": 2000.0, "kc": r.kc,
+             "nominal_kc": r.nominal_kc, "evaluations": r.evaluations}]
+    seed_iv = {"ground_dampings[3]": (1.2, 5.0)}
+    r = robust_max_stiffness(dev, 100.0, seed_iv)
+    t = timeit(lambda: robust_max_stiffness(dev, 100.0, seed_iv), repeat=1 if quick else 5)
+    rows.append({"name": "robust k_c, b4 in [1.2, 5] (Adams et al. section VI)", **t, "kc": r.kc,
+                 "nominal_kc": r.nominal_kc})
+    return rows
+
+
+def _tradeoff_rows(dev, quick: bool) -> list[dict]:
+    rows = []
+    grid = [(200, 0.01)] if quick else [(n, s) for n in (100, 200, 400, 800) for s in (0.0, 0.001, 0.01)]
+    for n_freq, noise in grid:
+        ms = _measurements(dev, n_freq, noise, 5, ("actuator", "gauge"))
+        fit = fit_chain(ms, 4, ground_dampings=(3,))
+        t = timeit(lambda: fit_chain(ms, 4, ground_dampings=(3,)), repeat=1 if quick else 3)
+        rows.append({"name": f"fit actuator + gauge, {n_freq} points each, noise {noise:g}", **t,
+                     "max_rel_error": _max_error(fit, dev)})
+    return rows
+
+
+def _coverage_rows(dev, quick: bool) -> list[dict]:
+    kc_true = ImpedanceDisplay(dev).max_stiffness(100.0).kc
+    reps = 2 if quick else 100
+    rows = []
+    for quantities in (("actuator", "gauge"),) if quick else (("actuator", "gauge"), ("actuator",)):
+        covered, kc_err = 0, []
+        for r in range(reps):
+            fit = fit_chain(_measurements(dev, 400, 0.01, 2000 + r, quantities), 4, ground_dampings=(3,))
+            tv = np.array([device_value(dev, k) for k in fit.keys])
+            covered = covered + ((fit.lower <= tv) & (tv <= fit.upper))
+            kc_err.append(abs(ImpedanceDisplay(fit.device).max_stiffness(100.0).kc / kc_true - 1))
+        rows.append({"name": f"coverage of 95 % intervals, {reps} replicates, 1 % noise, {' + '.join(quantities)}",
+                     "min_covered": int(np.min(covered)), "covered": {k: int(c) for k, c in zip(fit.keys, covered)},
+                     "max_kc_rel_error": float(np.max(kc_err)), "median_kc_rel_error": float(np.median(kc_err))})
+    return rows
+
+
+def run(quick: bool = False) -> list[dict]:
+    dev = hbfd()
+    return (_fit_rows(dev, quick) + _frf_rows(dev, quick) + _robust_rows(dev, quick) + _tradeoff_rows(dev, quick)
+            + _coverage_rows(dev, quick))
+
+
+if __name__ == "__main__":  # pragma: no cover
+    for row in run(quick=True):
+        print(row)
