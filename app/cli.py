@@ -11,6 +11,8 @@ Usage::
     zwidth export-plot PROFILE --plot bound|range|chart|... -o FILE.png|svg|csv
     zwidth report PROFILE -o report.pdf|report.html [--page-size a4|letter]
     zwidth bench [--quick]
+    zwidth identify MEASUREMENT... --masses N [--fix KEY=VALUE]... -o profile.json [--json]
+                                  fit a chain to measurements (app/cli_identify.py; never imports Qt)
 
 Exit codes: 0 success, 1 bad profile (or the GUI cannot start), 2 usage error.
 """
@@ -26,15 +28,19 @@ from pathlib import Path
 
 __all__ = ["main"]
 
-SUBCOMMANDS = ("analyze", "design", "gui", "bench", "export-plot", "report")
+SUBCOMMANDS = ("analyze", "design", "gui", "bench", "export-plot", "report", "identify")
 
 #: ``--plot`` names of ``export-plot`` -> figure keys of :mod:`app.report.figures`
 PLOTS = {"bound": "bound", "range": "range", "chart": "chart", "transparency": "tradeoff_j",
          "robustness": "tradeoff_l", "step": "step", "map": "map", "scenario-position": "scenario_position",
-         "scenario-force": "scenario_force"}
+         "scenario-force": "scenario_force", "identify": "identify", "identify-phase": "identify_phase",
+         "zwidth-region": "zwidth_region", "filter-optimum": "filter_optimum"}
+#: plots computed with the default controller section (backward difference, B 0.1-100) when the profile has none
+DEFAULT_SECTION_PLOTS = ("zwidth-region", "filter-optimum")
 #: the profile section each optional plot needs
 PLOT_SECTIONS = {"transparency": "wall", "robustness": "wall", "step": "wall", "map": "simulation",
-                 "scenario-position": "simulation", "scenario-force": "simulation"}
+                 "scenario-position": "simulation", "scenario-force": "simulation", "identify": "identification",
+                 "identify-phase": "identification"}
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -61,7 +67,8 @@ def _parser() -> argparse.ArgumentParser:
     export = sub.add_parser("export-plot", help="write one plot as PNG, SVG or CSV (headless)",
                             description="Write one of the app's plots of a profile; the format comes from the "
                             "extension of -o. transparency/robustness/step need a 'wall' section, map and "
-                            "scenario-* a 'simulation' section.")
+                            "scenario-* a 'simulation' section; zwidth-region and filter-optimum use the profile's 'controller' "
+                            "section (velocity filter, B range, trials) or the defaults.")
     export.add_argument("profile", metavar="PROFILE", help="profile JSON file")
     export.add_argument("--plot", required=True, choices=tuple(PLOTS), help="which plot")
     export.add_argument("-o", "--output", required=True, metavar="FILE", help="FILE.png, FILE.svg or FILE.csv")
@@ -78,6 +85,9 @@ def _parser() -> argparse.ArgumentParser:
     report.add_argument("--page-size", choices=("a4", "letter"), default="a4", help="PDF page size (default a4)")
     report.add_argument("--no-sampled", action="store_true",
                         help="leave out the sampled-data stability map and the scenario simulation")
+    from app.cli_identify import add_identify_parser
+
+    add_identify_parser(sub)
     gui = sub.add_parser("gui", help="open the GUI (the default)")
     gui.add_argument("profile", metavar="PROFILE", nargs="?", help="profile JSON file (default: HBFD)")
     return parser
@@ -201,6 +211,10 @@ def _export_plot(args: argparse.Namespace) -> int:
     if section and getattr(profile, section) is None:
         return _error(f"{args.profile}: $.{section}: the '{args.plot}' plot needs this section, which the "
                       "profile does not have")
+    if args.plot in DEFAULT_SECTION_PLOTS and profile.controller is None:
+        from analysis.profiles import ControllerSection
+
+        profile = profile.replace(controller=ControllerSection())
     _headless()
     from analysis.errors import ValidationError
 
@@ -249,7 +263,9 @@ def _report(args: argparse.Namespace) -> int:
     except ValidationError as err:
         return _error(f"{args.profile}: {err}")
     except OSError as err:
-        return _error(f"cannot write {args.output}: {err}")
+        from analysis.profiles.files import unwritable_reason
+
+        return _error(f"cannot write {args.output}: {unwritable_reason(args.output) or err.strerror or err}")
     return 0
 
 
@@ -261,6 +277,11 @@ def _gui(profile_path: str | Path | None) -> int:
     loaded, code = _load(path)  # a bad file is reported here, with exit code 1, before Qt starts
     if loaded is None:
         return code
+    from app.display_check import gui_problem
+
+    problem = gui_problem()  # before Qt: without a display Qt would abort the process (exit 134)
+    if problem is not None:
+        return _error(problem)
     try:
         from app.window.main_window import run_gui
     except ImportError as exc:  # usually a missing system library for Qt
@@ -286,6 +307,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         args_list = ["gui"]
     elif args_list[0] not in SUBCOMMANDS and args_list[0].lower().endswith(".json"):
         args_list = ["gui", *args_list]
+    if args_list[0] in ("gui", "bench"):
+        # before numpy loads: the GUI's worker threads are its parallelism; BLAS threads on top of
+        # them oversubscribe the cores (a 1-point sampled-loop radius took 12 ms instead of 1 ms)
+        os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     parser = _parser()
     try:
         args = parser.parse_args(args_list)
@@ -300,6 +325,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _export_plot(args)
         if args.command == "report":
             return _report(args)
+        if args.command == "identify":
+            from app.cli_identify import run_identify
+
+            return run_identify(args)
         if args.command == "bench":
             from app.bench import run_bench
 

@@ -23,24 +23,26 @@ extensions = [
 ]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 
-# The two papers zwidth implements.  Every page that names an equation number cites the paper in
-# full the first time: ``|adams|`` / ``|eom|`` in the reStructuredText pages (api/); the Markdown
-# pages (guide/) spell the citation out so that it also reads on a repository browser.
-ADAMS = (
-    "Adams, R. J., Moreyra, M. R., & Hannaford, B. (1998). *Stability and Performance of Haptic "
-    "Displays: Theory and Experiments*. Proceedings of the ASME International Mechanical "
-    "Engineering Congress and Exposition, Haptic Interfaces for Virtual Environment and "
-    "Teleoperator Systems, DSC-Vol. 64, Anaheim, CA, pp. 227–234"
-)
-EOM = (
-    "Eom, K. S., Suh, I. H., & Yi, B.-J. (2000). *A Design Method of Haptic Interface Controller "
-    "Considering Transparency and Robust Stability*. Proceedings of the IEEE/RSJ International "
-    "Conference on Intelligent Robots and Systems (IROS 2000), Takamatsu, Japan"
-)
-rst_prolog = f"""
-.. |adams| replace:: {ADAMS}
-.. |eom| replace:: {EOM}
-"""
+# The papers zwidth cites, from the one definition (analysis/study/citations.py).  Every page that
+# names an equation number cites the paper in full the first time: ``|adams|`` / ``|eom|`` (and
+# ``|colgate_brown|``, ``|colgate_schenkel|``, ``|chawda|``, ``|hannaford_ryu|``,
+# ``|moreyra_hannaford|``) in the reStructuredText pages (api/); the Markdown pages (guide/) spell
+# the citation out so that it also reads on a repository browser.
+from analysis.study import citations  # noqa: E402 - after the sys.path insert above
+
+ADAMS = citations.ADAMS.markup().removesuffix(".")
+EOM = citations.EOM.markup().removesuffix(".")
+_SUBSTITUTIONS = {
+    "adams": citations.ADAMS,
+    "eom": citations.EOM,
+    "colgate_brown": citations.COLGATE_BROWN,
+    "colgate_schenkel": citations.COLGATE_SCHENKEL,
+    "chawda": citations.CHAWDA,
+    "hannaford_ryu": citations.HANNAFORD_RYU,
+    "moreyra_hannaford": citations.MOREYRA_HANNAFORD,
+}
+rst_prolog = "\n".join(f".. |{name}| replace:: {ref.markup().removesuffix('.')}"
+                        for name, ref in _SUBSTITUTIONS.items()) + "\n"
 myst_enable_extensions = ["colon_fence"]
 myst_heading_anchors = 3
 
@@ -77,3 +79,30 @@ html_theme_options = {
 }
 html_static_path: list[str] = []
 html_show_sourcelink = False
+
+
+# Each object is documented once, on the page of the subpackage that defines it: a subpackage that
+# re-exports another one's name (analysis.sampled re-exports analysis.chain.VelocityFilter) does not
+# document it again (two descriptions of one class are a duplicate-object warning).  A module's
+# signature is processed before its members, so it tells which package is being documented.
+_documenting: list[str] = [""]
+
+
+def _note_module(app, what, name, obj, options, signature, return_annotation) -> None:  # noqa: ANN001
+    if what == "module":
+        _documenting[0] = name
+
+
+def _skip_reexport(app, what, name, obj, skip, options):  # noqa: ANN001 - Sphinx event
+    if what != "module" or skip:
+        return None
+    home = getattr(obj, "__module__", None) or ""
+    current = _documenting[0]
+    if home.startswith("analysis.") and current and not (home == current or home.startswith(current + ".")):
+        return True
+    return None
+
+
+def setup(app) -> None:  # noqa: ANN001 - Sphinx hook
+    app.connect("autodoc-process-signature", _note_module)
+    app.connect("autodoc-skip-member", _skip_reexport)

@@ -14,6 +14,30 @@ REQUIRED=(
     "libdbus-1.so.3 libdbus-1-3"
     "libglib-2.0.so.0 libglib2.0-0t64 libglib2.0-0"
 )
+# The X11 client libraries of Qt's xcb platform plugin, checked when a display is present
+# (DISPLAY or WAYLAND_DISPLAY set): without them the GUI aborts at start on an X11 desktop.
+# The same list as app/display_check.py (XCB_LIBRARIES).
+XCB_REQUIRED=(
+    "libxcb.so.1 libxcb1"
+    "libX11-xcb.so.1 libx11-xcb1"
+    "libxcb-cursor.so.0 libxcb-cursor0"
+    "libxcb-icccm.so.4 libxcb-icccm4"
+    "libxcb-image.so.0 libxcb-image0"
+    "libxcb-keysyms.so.1 libxcb-keysyms1"
+    "libxcb-randr.so.0 libxcb-randr0"
+    "libxcb-render.so.0 libxcb-render0"
+    "libxcb-render-util.so.0 libxcb-render-util0"
+    "libxcb-shape.so.0 libxcb-shape0"
+    "libxcb-shm.so.0 libxcb-shm0"
+    "libxcb-sync.so.1 libxcb-sync1"
+    "libxcb-util.so.1 libxcb-util1"
+    "libxcb-xfixes.so.0 libxcb-xfixes0"
+    "libxcb-xkb.so.1 libxcb-xkb1"
+    "libxkbcommon-x11.so.0 libxkbcommon-x11-0"
+)
+if [[ -n "${DISPLAY:-}" || -n "${WAYLAND_DISPLAY:-}" ]]; then
+    REQUIRED+=("${XCB_REQUIRED[@]}")
+fi
 FONT_PACKAGE=fonts-dejavu-core
 
 ldconfig_bin=$(PATH="$PATH:/sbin:/usr/sbin" command -v ldconfig || true)

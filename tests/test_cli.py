@@ -34,7 +34,8 @@ def test_analyze_bad_profile_exits_1(capsys, bad_profile, as_json):
     assert out == ""
     assert (
         err
-        == f"zwidth: error: {bad_profile}: $.device.masses[1]: expected a number > 0 and finite (kg), got -1.0\n"
+        == f"zwidth: error: {bad_profile}: $.device.masses[1] (mass 2): expected a number > 0 and finite, "
+        "within the physical range [1e-06, 1000] (kg), got -1.0\n"
     )
 
 

@@ -14,6 +14,7 @@ from analysis.identify import (
     device_response,
     device_value,
     fit_chain,
+    load_measurement,
     make_measurement,
     order_selection,
 )
@@ -59,6 +60,47 @@ def test_fixed_parameter_and_continuous_plus_clamped_measurements():
     assert "masses[0]" not in fit.free_keys and fit.covariance.shape == (10, 10)
     assert np.max(np.abs(_rel_errors(fit, d))) < 1e-6
     np.testing.assert_allclose(np.diag(fit.correlation), 1.0)
+
+
+@pytest.mark.parametrize("key", ["masses[0]", "masses[2]", "masses[3]", "stiffnesses[0]", "stiffnesses[2]",
+                                 "dampings[1]", "ground_dampings[3]"])
+def test_any_parameter_fixed_at_its_true_value_recovers_every_other_from_the_automatic_start(key):
+    # The data-derived start knows nothing of the fixed value; pasted into it, a fixed handle mass
+    # once moved the hidden handle mode away and the fit landed at stiffnesses[0] = 83 kN/m.
+    d = make_hbfd()
+    fit = fit_chain([_measure(d)], 4, ground_dampings=(3,), fixed={key: device_value(d, key)})
+    assert fit.fixed[fit.keys.index(key)] and fit.value(key) == device_value(d, key)
+    assert len(fit.free_keys) == 10 and key not in fit.free_keys
+    assert np.max(np.abs(_rel_errors(fit, d))) < 1e-6
+    assert fit.converged and fit.residual < 1e-8
+
+
+def test_a_fixed_handle_mass_at_one_percent_noise_still_fits_to_the_noise_floor():
+    # The released fit places the (non-identifiable) handle mode with a tiny mass; putting the
+    # known mass back rescales the handle side so that the mode stays where the data put it.
+    m = _measure(make_hbfd(), noise=0.01, seed=5)
+    free = fit_chain([m], 4, ground_dampings=(3,))
+    for mass in (0.2, 0.25):
+        fit = fit_chain([m], 4, ground_dampings=(3,), fixed={"masses[0]": mass})
+        assert fit.residual < 1.01 * free.residual
+        assert fit.value("stiffnesses[2]") == pytest.approx(874e3, rel=0.01)
+
+
+def test_the_issues_api_example_with_a_fixed_handle_mass(tmp_path):
+    d = make_hbfd()
+    h = device_response(d, W, "actuator", "free", sample_time=T)
+    rows = [f"{float(a)!r},{float(b.real)!r},{float(b.imag)!r}" for a, b in zip(W, h)]
+    path = tmp_path / "frf.csv"
+    path.write_text("frequency_rad_s,real,imag\n" + "\n".join(rows) + "\n")
+    m = load_measurement(path, quantity="actuator", boundary="free", sample_time=1e-3, delay_samples=0)
+    fit = fit_chain([m], n_masses=4, ground_dampings=(3,), fixed={"masses[0]": 0.2})
+    np.testing.assert_allclose(fit.device.masses, [0.2, 2.3, 2.0, 0.5], rtol=1e-6)
+    np.testing.assert_allclose(fit.device.stiffnesses, [130e3, 84e3, 874e3], rtol=1e-6)
+    np.testing.assert_allclose(fit.device.dampings, d.dampings, rtol=1e-6)
+    np.testing.assert_allclose(fit.device.ground_dampings, [0, 0, 0, 5.0], rtol=1e-6)
+    assert fit.intervals["masses[0]"] == (0.2, 0.2)
+    lo, hi = fit.intervals["stiffnesses[0]"]
+    assert lo <= 130e3 <= hi
 
 
 def test_order_selection_picks_four_masses():

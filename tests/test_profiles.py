@@ -16,6 +16,7 @@ from hypothesis import strategies as st
 from analysis.profiles import io as profiles
 from analysis.chain.device import Device
 from analysis.errors import ValidationError
+from analysis.profiles.errors import element_label
 from analysis.profiles.io import (
     Profile,
     ProfileError,
@@ -141,7 +142,8 @@ def test_negative_mass(tmp_path):
     assert err.json_path == "$.device.masses[1]"
     assert (
         str(err)
-        == f"{tmp_path / 'hbfd.json'}: $.device.masses[1]: expected a number > 0 and finite (kg), got -1.0"
+        == f"{tmp_path / 'hbfd.json'}: $.device.masses[1] (mass 2): expected a number > 0 and finite, "
+        "within the physical range [1e-06, 1000] (kg), got -1.0"
     )
     assert "> 0" in err.expected
 
@@ -179,7 +181,7 @@ def test_boolean_where_number_belongs(tmp_path):
     assert "got true" in str(err)
 
 
-@pytest.mark.parametrize("version", [99, 4, 0, -1, "1", 1.0, None, True])
+@pytest.mark.parametrize("version", [99, profiles.SCHEMA_VERSION + 1, 0, -1, "1", 1.0, None, True])
 def test_bad_schema_version(tmp_path, version):
     d = hbfd_dict()
     d["schema_version"] = version
@@ -257,7 +259,8 @@ def test_bad_values_name_their_json_path(tmp_path, mutate, json_path):
     mutate(d)
     err = rejected(tmp_path, d)
     assert err.json_path == json_path
-    assert f": {json_path}: " in str(err)
+    label = element_label(json_path)  # an element's GUI name (1-based) follows its 0-based path
+    assert f": {json_path} ({label}): " in str(err) if label else f": {json_path}: " in str(err)
 
 
 def test_band_above_nyquist_message(tmp_path):
@@ -291,10 +294,10 @@ def test_profile_from_dict_without_path():
     with pytest.raises(ProfileError) as info:
         profile_from_dict(d)
     assert info.value.path is None
-    assert str(info.value).startswith("$.device.masses[2]: expected a number > 0")
+    assert str(info.value).startswith("$.device.masses[2] (mass 3): expected a number > 0")
     with pytest.raises(ProfileError) as info:
         profile_from_dict(d, path="hbfd.json")
-    assert str(info.value).startswith("hbfd.json: $.device.masses[2]: expected a number > 0 and finite")
+    assert str(info.value).startswith("hbfd.json: $.device.masses[2] (mass 3): expected a number > 0 and finite")
 
 
 def test_profile_from_dict_does_not_modify_input():
@@ -529,10 +532,10 @@ def test_fuzz_mutated_hbfd(data):
 @settings(max_examples=200, deadline=None)
 @given(st.floats(min_value=-1e100, max_value=1e100), st.integers(0, 3))
 def test_fuzz_numbers_in_hbfd(x, i):
-    """A number at a mass is accepted iff it is > 0."""
+    """A number at a mass is accepted iff it is in the physical range of masses [1e-6, 1e3] kg."""
     d = hbfd_dict()
     d["device"]["masses"][i] = x
-    if x > 0:
+    if 1e-6 <= x <= 1e3:
         p = profile_from_dict(d)
         assert p.device.masses[i] == x
     else:

@@ -11,6 +11,12 @@ from .device import (  # noqa: F401
     damping_from_ratio,
     ratio_from_damping,
 )
+from .limits import (  # noqa: F401
+    LIMITS,
+    Limit,
+    check_count,
+    check_simulation_size,
+)
 from .continued_fraction import (  # noqa: F401
     continued_fraction,
     node_element_impedances,
@@ -39,6 +45,12 @@ from .discretize import (  # noqa: F401
     mass_damper_admittance,
     check_frequencies,
 )
+from .velocity_filter import (  # noqa: F401
+    BACKWARD,
+    FILTER_KINDS,
+    FilterRealization,
+    VelocityFilter,
+)
 from .grids import (  # noqa: F401
     warp,
     log_grid,
@@ -52,6 +64,10 @@ __all__ = [
     "Device",
     "damping_from_ratio",
     "ratio_from_damping",
+    "LIMITS",
+    "Limit",
+    "check_count",
+    "check_simulation_size",
     "continued_fraction",
     "node_element_impedances",
     "chain_impedances",
@@ -78,4 +94,8 @@ __all__ = [
     "refine_minima",
     "device_modes",
     "band_edges",
+    "BACKWARD",
+    "FILTER_KINDS",
+    "FilterRealization",
+    "VelocityFilter",
 ]

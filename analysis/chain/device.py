@@ -19,7 +19,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import linalg
 
-from analysis.checks import Real, check_elements, integer, positive, real, vector
+from analysis.chain.limits import BAND_MIN, DAMPING, GROUND_DAMPING, MASS, MAX_MASSES, SAMPLE_TIME, STIFFNESS
+from analysis.checks import check_elements, integer, real, vector
 from analysis.errors import ValidationError
 
 __all__ = ["Device", "damping_from_ratio", "ratio_from_damping"]
@@ -40,14 +41,14 @@ def ratio_from_damping(stiffness: float, mass_a: float, mass_b: float, damping: 
     return damping / (2.0 * math.sqrt(stiffness * mu))
 
 
-# Elements of the chain: "> 0 and finite" / ">= 0 and finite", the error carrying the float value.
-_POSITIVE_ELEMENT = Real(lo=0.0, lo_open=True, report_float=True)
-_NONNEGATIVE_ELEMENT = Real(lo=0.0, report_float=True)
 
 
 @dataclass(frozen=True, eq=False)
 class Device:
     """A validated lumped-mass chain with its sample period (eq. 25, 28).
+
+    Every value must lie in its physical range (:mod:`analysis.chain.limits`: masses 1 mg .. 1 t,
+    T 1 µs .. 1 s, ...); a value outside is refused with a ValidationError naming the range.
 
     Parameters
     ----------
@@ -79,18 +80,21 @@ class Device:
         n = m.size
         if n < 1:
             raise ValidationError("masses", "at least one mass", [])
+        if n > MAX_MASSES:
+            raise ValidationError("masses", f"at most {MAX_MASSES} masses (the longest tested chain)", n)
         k = vector("stiffnesses", self.stiffnesses, n - 1)
         b = vector("dampings", self.dampings, n - 1)
         g = vector("ground_dampings", np.zeros(n) if self.ground_dampings is None else self.ground_dampings, n)
-        check_elements("masses", m, _POSITIVE_ELEMENT)
-        check_elements("stiffnesses", k, _POSITIVE_ELEMENT)
-        check_elements("dampings", b, _NONNEGATIVE_ELEMENT)
-        check_elements("ground_dampings", g, _NONNEGATIVE_ELEMENT)
-        T = positive("sample_time", self.sample_time, "s")
+        check_elements("masses", m, MASS.rule)
+        check_elements("stiffnesses", k, STIFFNESS.rule)
+        check_elements("dampings", b, DAMPING.rule)
+        check_elements("ground_dampings", g, GROUND_DAMPING.rule)
+        T = SAMPLE_TIME("sample_time", self.sample_time)
         s = integer("sensor_element", self.sensor_element, 0, max(n - 2, 0))
         nyq = math.pi / T
-        wmin = real("band_min", self.band_min, lo=0.0, lo_open=True, hi=nyq, hi_open=True,
-                    allowed=f"> 0 and < Nyquist = {nyq:.6g} rad/s")
+        wmin = real("band_min", self.band_min, lo=BAND_MIN.lo, hi=nyq, hi_open=True,
+                    allowed=f"> 0 and < Nyquist = {nyq:.6g} rad/s, within the physical range "
+                            f"[{BAND_MIN.lo:g}, {nyq:.6g}) (rad/s)")
         object.__setattr__(self, "masses", m)
         object.__setattr__(self, "stiffnesses", k)
         object.__setattr__(self, "dampings", b)

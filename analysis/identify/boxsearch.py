@@ -32,7 +32,7 @@ from scipy import optimize
 
 from analysis.chain.device import Device
 from analysis.errors import ValidationError
-from analysis.identify.params import device_value, device_with, parse_key
+from analysis.identify.params import device_value, device_with, parse_key, physical_range
 
 __all__ = ["ParameterBox", "SearchTrace", "box_search", "parameter_box"]
 
@@ -73,7 +73,8 @@ class ParameterBox:
 
 def parameter_box(device: Device, intervals: Mapping[str, tuple[float, float]]) -> ParameterBox:
     """Validate ``intervals`` (``{key: (low, high)}``) against ``device``; point intervals are
-    dropped (they fix the parameter at that value)."""
+    dropped (they fix the parameter at that value), and every interval is clipped to the physical
+    range :class:`~analysis.Device` accepts (a fit's interval may reach beyond it)."""
     keys, lo, hi = [], [], []
     fixed = {}
     for key, iv in intervals.items():
@@ -83,6 +84,8 @@ def parameter_box(device: Device, intervals: Mapping[str, tuple[float, float]]) 
             raise ValidationError(key, "an interval (low, high) with 0 <= low <= high, finite", iv)
         if a == 0 and name in ("masses", "stiffnesses"):
             raise ValidationError(key, "low > 0 (masses and stiffnesses are positive)", iv)
+        plo, phi = physical_range(key, device.n)
+        a, b = min(max(a, plo if a > 0 else 0.0), phi), min(max(b, plo), phi)  # clip to the physical range
         if a == b:
             fixed[key] = a
             continue

@@ -11,7 +11,10 @@ Method
    without them misses most, plus seeded candidates).  Every candidate gets a short
    Levenberg-Marquardt run (:func:`scipy.optimize.least_squares`, ``method="lm"``), the best two
    are run to convergence and the lower cost wins.  Without an ``actuator``/``free``
-   measurement the start is generic and the fit says so in its warnings.
+   measurement the start is generic and the fit says so in its warnings.  With ``fixed``
+   unknowns, the candidates also include the optimum of the fit with them released, the fixed
+   values put back as they are and with the handle side rescaled to keep its modes
+   (:func:`_released_starts`): the data-derived start knows nothing of the fixed values.
 3. Uncertainty at the optimum (:mod:`analysis.identify.uncertainty`): covariance
    ``s^2 (J^T J)^{-1}`` in log-parameters, 95 % intervals ``exp(theta +- 1.96 sigma)``, widened to
    other optima that fit equally well (likelihood-ratio bound), identifiability with suggestions.
@@ -36,7 +39,7 @@ from scipy import optimize
 
 from analysis.chain.device import Device
 from analysis.identify.measurement import Measurement
-from analysis.identify.params import ChainParameters, parameter_keys, parse_key
+from analysis.identify.params import ChainParameters, parameter_keys, parse_key, physical_range
 from analysis.identify.problem import FitProblem
 from analysis.identify.results import ChainFit, OrderSelection
 from analysis.identify.starts import other_peaks, start_chains, visible_spectrum
@@ -60,15 +63,33 @@ def _check(measurements: Sequence[Measurement], n_masses: int, ground: Sequence[
         if not 0 <= int(g) < n_masses:
             raise ValidationError("ground_dampings", f"mass indices 0..{n_masses - 1}", g)
     for key, v in fixed.items():
-        parse_key(key, n_masses)
-        if not (np.isfinite(v) and v >= 0):
-            raise ValidationError(key, ">= 0 and finite", v)
+        name, _ = parse_key(key, n_masses)
+        positive = name in ("masses", "stiffnesses")
+        if not (np.isfinite(v) and (v > 0 if positive else v >= 0)):
+            raise ValidationError(key, "> 0 and finite" if positive else ">= 0 and finite", v)
 
 
 def _solve(problem: FitProblem, theta0: np.ndarray, max_nfev: int) -> optimize.OptimizeResult:
-    """Levenberg-Marquardt on the residual with the batched Jacobian."""
-    return optimize.least_squares(problem.residual, theta0, jac=problem.jacobian, method="lm",
-                                  x_scale="jac", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=max_nfev)
+    """Levenberg-Marquardt on the residual with the batched Jacobian; when it leaves the physical
+    range of a parameter (:func:`analysis.identify.params.physical_range`, enforced by
+    :class:`~analysis.Device`), the bounded trust-region method from the clipped point instead."""
+    lo, hi = _log_bounds(problem)
+    kw = dict(jac=problem.jacobian, x_scale="jac", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=max_nfev)
+    inside = np.all((theta0 > lo) & (theta0 < hi))
+    if inside:
+        r = optimize.least_squares(problem.residual, theta0, method="lm", **kw)
+        if np.all((r.x >= lo) & (r.x <= hi)):
+            return r
+        theta0 = r.x
+    pad = 1e-9 * (hi - lo)
+    start = np.clip(theta0, lo + pad, hi - pad)
+    return optimize.least_squares(problem.residual, start, method="trf", bounds=(lo, hi), **kw)
+
+
+def _log_bounds(problem: FitProblem) -> tuple[np.ndarray, np.ndarray]:
+    n = problem.base.n
+    b = np.log(np.array([physical_range(k, n) for k in problem.keys]).reshape(-1, 2))
+    return b[:, 0], b[:, 1]
 
 
 def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_dampings: Sequence[int] | None = None,
@@ -97,6 +118,9 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
     base = ChainParameters.from_rows(all_keys, _values(rows, all_keys)[:1], rows)
     problem = FitProblem(tuple(measurements), tuple(free), base, int(sensor_element))
     thetas = np.log(np.maximum(_values(rows, free), 1e-300))
+    if free and set(fixed) & set(parameter_keys(n_masses, ground)):
+        released = _released_starts(problem, ground, fixed, rows.count, seed, hints, max_nfev)
+        thetas = np.vstack([released, thetas])
     sol, others = _multistart(problem, thetas, max_nfev) if free else (None, [])
     T = sample_time if sample_time is not None else _common_sample_time(measurements)
     template = Device(masses=np.ones(n_masses), stiffnesses=np.ones(n_masses - 1),
@@ -119,6 +143,64 @@ def _multistart(problem: FitProblem, thetas: np.ndarray,
     short = sorted((_solve(problem, th, _SHORT_RUN) for th in thetas), key=lambda r: r.cost)
     full = sorted((_solve(problem, r.x, max_nfev) for r in short[:_FULL_RUNS]), key=lambda r: r.cost)
     return full[0], full[1:]
+
+
+def _released_starts(problem: FitProblem, ground: tuple[int, ...], fixed: Mapping[str, float], count: int,
+                     seed: int, hints: np.ndarray | None, max_nfev: int) -> np.ndarray:
+    """Starts consistent with the fixed values: the fit with the chain's own fixed unknowns
+    released (fitted too), then the fixed values put back, as they are and with the handle side
+    rescaled (:func:`_rescaled`); rows of ``theta`` of ``problem.keys``.
+
+    The data-derived start (:func:`start_chains`) knows nothing of the fixed values: pasting a
+    fixed handle mass into a start whose hidden handle mode came from a guessed pair width moves
+    that mode far away, and the constrained search lands in another basin.  The released fit
+    starts from the same data-derived candidates as the unconstrained :func:`fit_chain` and
+    lands near the data's optimum; with the fixed values put back it starts the constrained
+    search in the right basin (on noise-free data with true fixed values, at the truth).
+    """
+    n = problem.base.n
+    own = parameter_keys(n, ground)
+    held = {k: v for k, v in fixed.items() if k not in own}  # fixed ground dampings not selected
+    rows = start_chains(problem.measurements, n, ground, held, count=count, seed=seed, hints=hints)
+    all_keys = parameter_keys(n, None)
+    base = ChainParameters.from_rows(all_keys, _values(rows, all_keys)[:1], rows)
+    released = FitProblem(problem.measurements, tuple(own), base, problem.sensor_element)
+    sol, _ = _multistart(released, np.log(np.maximum(_values(rows, own), 1e-300)), max_nfev)
+    chain = released.chains(sol.x)
+    chain = ChainParameters(*(np.concatenate([a, a]) for a in
+                              (chain.masses, chain.stiffnesses, chain.dampings, chain.ground_dampings)))
+    _rescaled(chain, 1, fixed)
+    for key, v in fixed.items():
+        name, i = parse_key(key, n)
+        getattr(chain, name)[:, i] = float(v)
+    thetas = np.log(np.maximum(_values(chain, problem.keys), 1e-300))
+    return thetas[:1] if np.allclose(thetas[0], thetas[1], rtol=0.0, atol=1e-9) else thetas
+
+
+def _rescaled(chain: ChainParameters, row: int, fixed: Mapping[str, float]) -> None:
+    """Rescale the handle side of ``chain[row]`` in place so that a fixed mass or stiffness keeps
+    the modes of that side.
+
+    For a fixed ``masses[i]`` or ``stiffnesses[i]`` with ratio ``r = fixed / fitted``, the masses
+    ``0..i`` and the elements ``0..i`` (stiffness and damping) are multiplied by ``r``: the
+    sub-chain's ``K - w^2 M`` scales by ``r``, so its modes against the rest (e.g. the handle
+    mode ``sqrt(k_0 / m_0)``) and their damping ratios stay where the data put them.  A poorly
+    determined handle mass from the released fit (1 % noise) otherwise moves the handle mode by
+    orders of magnitude when the known value is put in.
+    """
+    n = chain.n
+    for key, v in fixed.items():
+        name, i = parse_key(key, n)
+        if name not in ("masses", "stiffnesses"):
+            continue
+        old = float(getattr(chain, name)[row, i])
+        if not (old > 0 and v > 0):
+            continue
+        r = float(v) / old
+        top = min(i, n - 2)
+        chain.masses[row, : i + 1] *= r
+        chain.stiffnesses[row, : top + 1] *= r
+        chain.dampings[row, : top + 1] *= r
 
 
 def _hidden_hints(measurements: Sequence[Measurement], n: int, seed: int) -> np.ndarray | None:

@@ -22,10 +22,33 @@ from analysis.chain.device import Device
 from analysis.identify.errors import ParameterKeyError
 
 __all__ = ["FIELDS", "ChainParameters", "parameter_keys", "parse_key", "device_value",
-           "device_with", "device_values"]
+           "device_with", "device_values", "physical_range", "LOG_FLOOR"]
 
 #: The four vector fields of a chain, in the order of :func:`parameter_keys`.
 FIELDS = ("masses", "stiffnesses", "dampings", "ground_dampings")
+#: Smallest value a parameter fitted in log space may take where the physical range starts at 0
+#: (a lossless element or no damper to ground cannot be reached in log space).
+LOG_FLOOR = 1e-9
+
+
+def _physical(name: str) -> tuple[float, float]:
+    """``(lo, hi)`` of a field from :data:`analysis.chain.limits.LIMITS` (the one definition of the
+    physical ranges that :class:`~analysis.Device` enforces)."""
+    try:
+        from analysis.chain.limits import LIMITS
+    except ImportError:  # pragma: no cover - a tree without the limits module: no range
+        return 0.0, float("inf")
+    lim = LIMITS[name]
+    return float(lim.lo), float(lim.hi)
+
+
+def physical_range(key: str, n: int) -> tuple[float, float]:
+    """Physical ``(lo, hi)`` of the parameter ``key``, with ``lo`` raised to :data:`LOG_FLOOR`."""
+    name, _ = parse_key(key, n)
+    lo, hi = _physical(name)
+    return max(lo, LOG_FLOOR), hi
+
+
 _KEY = re.compile(r"^\s*(masses|stiffnesses|dampings|ground_dampings)\[(\d+)\]\s*$")
 
 

@@ -15,6 +15,7 @@ The modules are layered, each importing only those listed before it (no cycle):
 from __future__ import annotations
 
 from .errors import ProfileError
+from .controller import ControllerSection, parse_controller
 from .files import bundled_profiles, read_json, write_atomically
 from .fields import profile_from_current
 from .io import (
@@ -36,6 +37,8 @@ from .sections import (
 )
 
 __all__ = [
+    "ControllerSection",
+    "parse_controller",
     "DISPLAYS",
     "MIGRATIONS",
     "SCHEMA_VERSION",

@@ -1,7 +1,8 @@
 """The error a profile file or dict is refused with, and how a rejected JSON value is described.
 
 :class:`ProfileError` names the file and the JSON path of the offending value, e.g.
-``hbfd.json: $.device.masses[2]: expected a number > 0 and finite, got -1.0``.
+``hbfd.json: $.device.masses[2] (mass 3): expected a number > 0 and finite, ..., got -1.0``
+(JSON paths count from 0; the name in brackets is the GUI's, counting from 1).
 
 Numerics only: this module never imports Qt.
 """
@@ -10,11 +11,12 @@ from __future__ import annotations
 
 import json
 import os
+import re
 from collections.abc import Mapping
 
 import numpy as np
 
-__all__ = ["MISSING", "NonFinite", "ProfileError", "describe"]
+__all__ = ["MISSING", "NonFinite", "ProfileError", "describe", "element_label"]
 
 #: Stands for "the key is absent" (``None`` is JSON ``null``).
 MISSING = object()
@@ -48,7 +50,8 @@ class ProfileError(ValueError):
         self.path = None if path is None else os.fspath(path)
         self.json_path = json_path
         self.expected = expected
-        prefix = "".join(f"{part}: " for part in (self.path, json_path) if part)
+        where = f"{json_path} ({element_label(json_path)})" if json_path and element_label(json_path) else json_path
+        prefix = "".join(f"{part}: " for part in (self.path, where) if part)
         super().__init__(prefix + reason)
 
     @classmethod
@@ -63,6 +66,27 @@ class ProfileError(ValueError):
         err = ProfileError(self.reason, path=path, json_path=self.json_path, expected=self.expected)
         err.__cause__ = self.__cause__
         return err
+
+
+#: The GUI's 1-based name of an element of a device vector (JSON paths count from 0).
+_ELEMENT_LABELS = {
+    "masses": "mass {}",
+    "ground_dampings": "ground damping of mass {}",
+    "friction": "mass {}",
+    "stiffnesses": "element {}",
+    "dampings": "element {}",
+    "damping_ratios": "element {}",
+}
+_INDEXED = re.compile(r"\.(\w+)\[(\d+)\]$")
+
+
+def element_label(json_path: str) -> str:
+    """The GUI's name of the element a 0-based JSON path points at: ``"$.device.masses[2]"`` ->
+    ``"mass 3"`` (as the chain editor says "Mass 3"); ``""`` for any other path."""
+    match = _INDEXED.search(json_path)
+    if match is None or match.group(1) not in _ELEMENT_LABELS:
+        return ""
+    return _ELEMENT_LABELS[match.group(1)].format(int(match.group(2)) + 1)
 
 
 class NonFinite:

@@ -14,10 +14,13 @@ import json
 from collections.abc import Mapping
 
 from analysis.chain.device import Device
+from analysis.chain.limits import GROUND_DAMPING, LIMITS, MASS, SAMPLE_TIME, STIFFNESS, Limit
 from analysis.checks import Real
 from analysis.errors import ValidationError
 from analysis.profiles.errors import MISSING, ProfileError
 from analysis.profiles.model import DISPLAYS, SCALAR_FIELDS, Profile
+from analysis.profiles.controller import parse_controller
+from analysis.profiles.identification import parse_identification
 from analysis.profiles.sections import SECTION_KEYS, parse_sections
 
 __all__ = ["profile_from_current"]
@@ -47,10 +50,13 @@ _FIELD_PATHS = {
     "sensor_element": "$.device.sensor_element",
     "sample_time": "$.sample_time",
     "band_min": "$.band.min",
+    "simulation steps": "$.simulation.scenario.duration",
+    "simulation values": "$.simulation.scenario.duration",
     "name": "$.name",
     "notes": "$.notes",
     "display": "$.display",
     "device": "$.device",
+    "cutoff": "$.controller.velocity_filter.cutoff",
     **{name: spec.json_path for name, spec in SCALAR_FIELDS.items()},
 }
 
@@ -92,25 +98,23 @@ def _object(value: object, jp: str, allowed_keys: set[str]) -> Mapping:
     return value
 
 
-def _number(value: object, jp: str, allowed: str, positive: bool | None) -> float:
-    """A finite real number; ``positive`` True: > 0, False: >= 0, None: any sign."""
-    expected = f"a number {allowed}"
-    rule = Real(lo=None if positive is None else 0.0, lo_open=bool(positive), allowed=expected, report_float=True)
+def _number(value: object, jp: str, limit: Limit | Real) -> float:
+    """A real number passing ``limit`` (the field's physical range, :mod:`analysis.chain.limits`)."""
+    rule = limit.rule if isinstance(limit, Limit) else limit
+    expected = "a number " + rule.text
     try:
         return rule(jp, value)
     except ValidationError as err:
         raise ProfileError.at(jp, expected, err.value) from None
 
 
-def _numbers(
-    value: object, jp: str, allowed: str, positive: bool, length: int | None, what: str
-) -> list[float]:
+def _numbers(value: object, jp: str, limit: Limit, length: int | None, what: str) -> list[float]:
     if not isinstance(value, list):
-        raise ProfileError.at(jp, f"a list of numbers {allowed}", value)
+        raise ProfileError.at(jp, f"a list of numbers {limit.text}", value)
     if length is not None and len(value) != length:
         n = f"{length} value{'s' if length != 1 else ''}"
         raise ProfileError.at(jp, f"a list of exactly {n} ({what})", value)
-    return [_number(v, f"{jp}[{i}]", allowed, positive) for i, v in enumerate(value)]
+    return [_number(v, f"{jp}[{i}]", limit) for i, v in enumerate(value)]
 
 
 def _string(value: object, jp: str, nonempty: bool = False) -> str:
@@ -121,26 +125,14 @@ def _string(value: object, jp: str, nonempty: bool = False) -> str:
 
 def _chain(dev: Mapping) -> tuple[list[float], list[float], str, list[float], list[float]]:
     """Masses, stiffnesses, the damping key and its values, and the ground dampings of ``$.device``."""
-    masses = _numbers(
-        _get(dev, "masses", "$.device", expected="a list of masses > 0 (kg)"),
-        "$.device.masses",
-        "> 0 and finite (kg)",
-        True,
-        None,
-        "",
-    )
+    masses = _numbers(_get(dev, "masses", "$.device", expected="a list of masses > 0 (kg)"),
+                      "$.device.masses", MASS, None, "")
     if not masses:
         raise ProfileError.at("$.device.masses", "a list of at least one mass (kg)", [])
     n = len(masses)
     elements = f"one per element, {n} masses"
-    stiffnesses = _numbers(
-        _get(dev, "stiffnesses", "$.device", expected=f"a list of {n - 1} stiffnesses (N/m)"),
-        "$.device.stiffnesses",
-        "> 0 and finite (N/m)",
-        True,
-        n - 1,
-        elements,
-    )
+    stiffnesses = _numbers(_get(dev, "stiffnesses", "$.device", expected=f"a list of {n - 1} stiffnesses (N/m)"),
+                           "$.device.stiffnesses", STIFFNESS, n - 1, elements)
     has_b, has_r = "dampings" in dev, "damping_ratios" in dev
     if has_b == has_r:
         raise ProfileError(
@@ -150,16 +142,9 @@ def _chain(dev: Mapping) -> tuple[list[float], list[float], str, list[float], li
             expected="exactly one of dampings, damping_ratios",
         )
     damping_key = "dampings" if has_b else "damping_ratios"
-    allowed = ">= 0 and finite (N s/m)" if has_b else ">= 0 and finite"
-    values = _numbers(dev[damping_key], f"$.device.{damping_key}", allowed, False, n - 1, elements)
-    ground = _numbers(
-        _get(dev, "ground_dampings", "$.device", [0.0] * n),
-        "$.device.ground_dampings",
-        ">= 0 and finite (N s/m)",
-        False,
-        n,
-        "one per mass",
-    )
+    values = _numbers(dev[damping_key], f"$.device.{damping_key}", LIMITS[damping_key], n - 1, elements)
+    ground = _numbers(_get(dev, "ground_dampings", "$.device", [0.0] * n), "$.device.ground_dampings",
+                      GROUND_DAMPING, n, "one per mass")
     return masses, stiffnesses, damping_key, values, ground
 
 
@@ -170,16 +155,10 @@ def _device(data: Mapping) -> Device:
     sensor = _get(dev, "sensor_element", "$.device", 0)
     if isinstance(sensor, bool) or not isinstance(sensor, int):
         raise ProfileError.at("$.device.sensor_element", f"an integer in [0, {max(n - 2, 0)}]", sensor)
-    sample_time = _number(
-        _get(data, "sample_time", "$", expected="a number (s)"), "$.sample_time", "> 0 and finite (s)", True
-    )
+    sample_time = _number(_get(data, "sample_time", "$", expected="a number (s)"), "$.sample_time", SAMPLE_TIME)
     band = _object(_get(data, "band", "$", {"min": 1.0}), "$.band", {"min"})
-    band_min = _number(
-        _get(band, "min", "$.band", expected="a number (rad/s)"),
-        "$.band.min",
-        "> 0 and below Nyquist (rad/s)",
-        True,
-    )
+    band_min = _number(_get(band, "min", "$.band", expected="a number (rad/s)"), "$.band.min",
+                       Real(lo=0.0, lo_open=True, allowed="> 0 and below Nyquist (rad/s)", report_float=True))
     kwargs = {
         "ground_dampings": ground,
         "sensor_element": sensor,
@@ -217,8 +196,12 @@ def profile_from_current(data: Mapping) -> Profile:
     scalars = {"kc": kc, "bc": bc, "mc": mc, "bc_adm": bc_adm, "kp": kp, "kd": kd}
     for field_name, value in scalars.items():
         spec = SCALAR_FIELDS[field_name]
-        scalars[field_name] = _number(value, spec.json_path, spec.allowed, spec.positive)
+        scalars[field_name] = _number(value, spec.json_path, spec.limit)
     sections = parse_sections(data)
+    if "identification" in data:
+        sections["identification"] = parse_identification(data["identification"])
+    if "controller" in data:
+        sections["controller"] = parse_controller(data["controller"])
     try:
         return Profile(name=name, notes=notes, device=device, display=display, **scalars, **sections)
     except ValidationError as err:

@@ -17,7 +17,7 @@ from pathlib import Path
 from analysis.profiles.errors import NonFinite, ProfileError
 from analysis.resources import resource_path
 
-__all__ = ["bundled_profiles", "read_json", "write_atomically"]
+__all__ = ["bundled_profiles", "read_json", "write_atomically", "unwritable_reason"]
 
 
 class _DuplicateKey(Exception):
@@ -80,6 +80,26 @@ def _new_file_mode() -> int:
     return 0o666 & ~umask
 
 
+def unwritable_reason(path: str | os.PathLike) -> str | None:
+    """Why a file cannot be written at ``path``, in words (``"No such folder: /x"``), or ``None``
+    when nothing is visibly wrong.  Used for every "cannot write" message, which otherwise only
+    repeats the path (Qt's writers give no reason)."""
+    target = Path(os.path.abspath(os.fspath(path)))
+    folder = target.parent
+    if not folder.exists():
+        missing = folder
+        while not missing.parent.exists() and missing.parent != missing:
+            missing = missing.parent
+        return f"No such folder: {missing}"
+    if not folder.is_dir():
+        return f"Not a folder: {folder}"
+    if target.is_dir():
+        return f"Is a folder: {target}"
+    if not os.access(folder, os.W_OK) or (target.exists() and not os.access(target, os.W_OK)):
+        return f"Permission denied: {target if target.exists() else folder}"
+    return None
+
+
 def write_atomically(path: str | os.PathLike, text: str) -> None:
     """Write ``text`` to the file ``path`` names (symlinks resolved) atomically.
 
@@ -104,7 +124,8 @@ def write_atomically(path: str | os.PathLike, text: str) -> None:
         os.replace(tmp_name, target)
         tmp_name = None
     except Exception as exc:  # noqa: BLE001
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else f"{type(exc).__name__}: {exc}"
+        reason = unwritable_reason(path) or (exc.strerror if isinstance(exc, OSError) and exc.strerror
+                                             else f"{type(exc).__name__}: {exc}")
         raise ProfileError(f"cannot save: {reason}", path=path) from exc
     finally:
         if tmp_name is not None:

@@ -1,10 +1,10 @@
 """Device profiles: a device, its sample period and band, and the controller settings, as JSON.
 
-A profile file looks like this (schema version 3; the optional sections ``wall``,
-``observer`` (schema 2) and ``simulation`` (schema 3) are described in
-:mod:`analysis.profiles.sections`)::
+A profile file looks like this (schema version 5; the optional sections ``wall``,
+``observer`` (schema 2), ``simulation`` (schema 3), ``identification`` (schema 4) and ``controller``
+(schema 5) are described in :mod:`analysis.profiles.sections`)::
 
-    {"schema_version": 3, "name": "HBFD", "notes": "...",
+    {"schema_version": 5, "name": "HBFD", "notes": "...",
      "device": {"masses": [...], "stiffnesses": [...], "dampings": [...],
                 "ground_dampings": [...], "sensor_element": 0},
      "sample_time": 0.001, "band": {"min": 1.0},
@@ -61,7 +61,7 @@ __all__ = [
 ]
 
 #: Schema version written by :func:`save_profile` and the newest one :func:`load_profile` reads.
-SCHEMA_VERSION = 3
+SCHEMA_VERSION = 5
 
 #: ``MIGRATIONS[v]`` turns a schema-``v`` profile dict into a schema-``v + 1`` one.
 MIGRATIONS: dict[int, Callable[[dict], dict]] = dict(MIGRATION_STEPS)
@@ -170,6 +170,8 @@ def profile_to_dict(profile: Profile) -> dict:
         "admittance_coupling": {"mass": profile.mc, "damping": profile.bc_adm},
         "pd_gains": {"stiffness": profile.kp, "damping": profile.kd},
         **sections_to_dict(profile.wall, profile.observer, profile.simulation),
+        **({} if profile.identification is None else {"identification": profile.identification.to_dict()}),
+        **({} if profile.controller is None else {"controller": profile.controller.to_dict()}),
     }
 
 

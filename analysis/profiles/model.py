@@ -16,8 +16,11 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 from analysis.chain.device import Device
+from analysis.chain.limits import LIMITS, Limit, check_simulation_size
 from analysis.checks import Real, choice, string
 from analysis.errors import ValidationError
+from analysis.profiles.controller import ControllerSection
+from analysis.profiles.identification import IdentificationSection, check_against_device
 from analysis.profiles.sections import SimulationSection
 from analysis.transparency.settings import ObserverSettings, WallSettings
 
@@ -28,27 +31,36 @@ DISPLAYS = ("impedance", "admittance")
 
 
 class ScalarField(NamedTuple):
-    """Where a scalar :class:`Profile` field lives in the JSON and which values it takes."""
+    """Where a scalar :class:`Profile` field lives in the JSON and its physical range."""
 
     json_path: str
-    allowed: str
-    positive: bool  # > 0 (True) or >= 0 (False)
+    limit: Limit
+
+    @property
+    def allowed(self) -> str:
+        """The allowed range as shown in errors (the limit's text)."""
+        return self.limit.text
+
+    @property
+    def positive(self) -> bool:
+        """True: > 0; False: >= 0."""
+        return self.limit.positive
 
     @property
     def rule(self) -> Real:
         """The :class:`~analysis.checks.Real` rule of the field (errors carry the float value)."""
-        return Real(lo=0.0, lo_open=self.positive, allowed=self.allowed, not_real="a real number " + self.allowed,
-                    report_float=True)
+        return self.limit.rule
 
 
-#: Profile field -> its JSON path and allowed range; used for validation and error translation.
+#: Profile field -> its JSON path and physical range (:data:`analysis.chain.limits.LIMITS`);
+#: used for validation and error translation.
 SCALAR_FIELDS: dict[str, ScalarField] = {
-    "kc": ScalarField("$.impedance_coupling.stiffness", ">= 0 and finite (N/m)", False),
-    "bc": ScalarField("$.impedance_coupling.damping", ">= 0 and finite (N s/m)", False),
-    "mc": ScalarField("$.admittance_coupling.mass", "> 0 and finite (kg)", True),
-    "bc_adm": ScalarField("$.admittance_coupling.damping", "> 0 and finite (N s/m)", True),
-    "kp": ScalarField("$.pd_gains.stiffness", ">= 0 and finite (N/m)", False),
-    "kd": ScalarField("$.pd_gains.damping", ">= 0 and finite (N s/m)", False),
+    "kc": ScalarField("$.impedance_coupling.stiffness", LIMITS["kc"]),
+    "bc": ScalarField("$.impedance_coupling.damping", LIMITS["bc"]),
+    "mc": ScalarField("$.admittance_coupling.mass", LIMITS["mc"]),
+    "bc_adm": ScalarField("$.admittance_coupling.damping", LIMITS["bc_adm"]),
+    "kp": ScalarField("$.pd_gains.stiffness", LIMITS["kp"]),
+    "kd": ScalarField("$.pd_gains.damping", LIMITS["kd"]),
 }
 
 
@@ -74,6 +86,12 @@ class Profile:
     wall, observer, simulation:
         Optional sections (schema 2 and 3): the wall-controller design (Eom, Suh & Yi),
         the disturbance observer, and the sampled-data simulator's options and scenario.
+    identification:
+        Optional section (schema 4): parameter intervals and the embedded measurements
+        (:mod:`analysis.profiles.identification`).
+    controller:
+        Optional section (schema 5): the velocity filter, the Z-width region's B range and a
+        trials file (:mod:`analysis.profiles.controller`); ``None`` is the backward difference.
     """
 
     name: str
@@ -89,10 +107,14 @@ class Profile:
     wall: WallSettings | None = None
     observer: ObserverSettings | None = None
     simulation: SimulationSection | None = None
+    identification: IdentificationSection | None = None
+    controller: ControllerSection | None = None
 
     def __post_init__(self) -> None:
         for field_name, cls in (("wall", WallSettings), ("observer", ObserverSettings),
-                                ("simulation", SimulationSection)):
+                                ("simulation", SimulationSection),
+                                ("identification", IdentificationSection),
+                                ("controller", ControllerSection)):
             value = getattr(self, field_name)
             if value is not None and not isinstance(value, cls):
                 raise ValidationError(field_name, f"None or {cls.__name__}", value)
@@ -101,8 +123,17 @@ class Profile:
         if not isinstance(self.device, Device):
             raise ValidationError("device", "a Device", self.device)
         choice("display", self.display, DISPLAYS, allowed=" or ".join(repr(d) for d in DISPLAYS))
+        if self.identification is not None:
+            check_against_device(self.identification, self.device.n)
+        if self.controller is not None:  # the filter's cut-off against this device's Nyquist frequency
+            self.controller.check(self.device.sample_time)
         for field_name, spec in SCALAR_FIELDS.items():
             object.__setattr__(self, field_name, spec.rule(field_name, getattr(self, field_name)))
+        if self.simulation is not None:  # the work the saved scenario asks for, before any allocation
+            opt = self.simulation.options
+            substeps = opt.substeps if any(f > 0 for f in opt.friction) else 1
+            check_simulation_size(self.simulation.scenario.duration, self.device.sample_time, substeps,
+                                  self.device.n)
 
     def replace(self, **changes) -> Profile:
         """A copy with some fields changed, validated again (raises ValidationError)."""

@@ -3,7 +3,11 @@
 * schema 2: ``wall`` (the wall-controller design of Eom, Suh & Yi, :class:`WallSettings`) and
   ``observer`` (the disturbance observer, :class:`ObserverSettings`);
 * schema 3: ``simulation`` (``{"options": SimulationOptions, "scenario": Scenario}``, the
-  sampled-data simulator's settings and the chosen scenario).
+  sampled-data simulator's settings and the chosen scenario);
+* schema 4: ``identification`` (parameter intervals and embedded measurements, parsed by
+  :mod:`analysis.profiles.identification`, which :mod:`analysis.profiles.fields` calls);
+* schema 5: ``controller`` (the velocity filter, the Z-width region's B range and a trials
+  file, parsed by :mod:`analysis.profiles.controller`, which :mod:`analysis.profiles.fields` calls).
 
 Every section is optional; an older file simply has none of them, so the migrations only
 raise the version number.  Errors name the JSON path, e.g. ``$.wall.mass`` or
@@ -24,7 +28,7 @@ from analysis.transparency.settings import ObserverSettings, WallSettings
 
 __all__ = ["SECTION_KEYS", "MIGRATION_STEPS", "SimulationSection", "parse_sections", "sections_to_dict"]
 
-SECTION_KEYS = ("wall", "observer", "simulation")
+SECTION_KEYS = ("wall", "observer", "simulation", "identification", "controller")
 
 
 @dataclass(frozen=True)
@@ -51,7 +55,19 @@ def _to_3(data: dict) -> dict:
     return data
 
 
-MIGRATION_STEPS = {1: _to_2, 2: _to_3}
+def _to_4(data: dict) -> dict:
+    """Schema 3 -> 4: adds the optional ``identification`` section (nothing to change)."""
+    return data
+
+
+def _to_5(data: dict) -> dict:
+    """Schema 4 -> 5: adds the optional ``controller`` section (velocity filter, Z-width B range,
+    trials file; :mod:`analysis.profiles.controller`) -- nothing to change: no section is the
+    backward difference, every result as before."""
+    return data
+
+
+MIGRATION_STEPS = {1: _to_2, 2: _to_3, 3: _to_4, 4: _to_5}
 
 
 #: The names the settings records give themselves in a "not an object" error (see ``from_dict``).

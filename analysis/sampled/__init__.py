@@ -10,10 +10,18 @@ for the real sampled loop:
 * :func:`worst_case` -- worst spectral radius over human grasps x environments;
 * :func:`stability_map` -- spectral radius over two parameters in one batched sweep;
 * :func:`passivity_limit` -- Colgate & Schenkel's exact passivity limit of a rigid device;
+* :class:`VelocityFilter` -- the controller's velocity estimate (backward difference, optionally
+  low-pass filtered), accepted by every analysis with a damping term;
+* :func:`zwidth_region` / :func:`optimal_filter` -- Colgate & Brown's (B, K) Z-width region,
+  its area and the velocity-filter cut-off that maximizes it (Chawda et al.);
+  :func:`load_trials` / :func:`score_trials` -- hardware trials against the region;
+* :func:`passivity_comparison` -- a too-stiff wall with and without Hannaford & Ryu's passivity
+  controller (``SimulationOptions.passivity_control``) and behind an eq. (9) coupling;
 * :func:`simulate` -- the nonlinear time-domain simulator with scenario presets.
 
-The loop model is documented in :mod:`analysis.sampled.loop`, the controllers of the two displays
-in :mod:`analysis.sampled.controllers`, the terminations in :mod:`analysis.sampled.terminations`, passivity in :mod:`analysis.sampled.passivity`, the
+The loop model is documented in :mod:`analysis.sampled.loop`, the controllers of the two
+displays in :mod:`analysis.sampled.controllers`, the terminations in
+:mod:`analysis.sampled.terminations`, passivity in :mod:`analysis.sampled.passivity`, the
 simulator and its verdict detector in :mod:`analysis.sampled.simulator`, options and scenarios in
 :mod:`analysis.sampled.scenarios`.  Numpy and scipy only.
 
@@ -22,9 +30,10 @@ name (``"impedance"``/``"admittance"``) to :data:`IMPEDANCE_LOOP`/:data:`ADMITTA
 (:data:`DISPLAY_LOOPS`), :func:`causality_kind` maps an environment causality to
 :data:`PENALTY`/:data:`CONSTRAINT` (:data:`CAUSALITY_KINDS`); nothing else reads the names.
 
-Loading is layered: the settings records (options, scenarios, terminations) and the display loop
-objects are light and imported with the package; the loop, sweeps, passivity, results and simulator are imported on
-first use of one of their names (a PEP 562 module ``__getattr__``), so that the profile record
+Loading is layered: the settings records (options, scenarios, terminations) and the display
+loop objects are light and imported with the package; the loop, sweeps, passivity, results and
+simulator are imported on first use of one of their names (a PEP 562 module ``__getattr__``),
+so that the profile record
 can hold a scenario without loading the simulator.  ``from analysis.sampled import simulate``,
 ``__all__`` and ``dir()`` work as before.
 """
@@ -42,6 +51,7 @@ from analysis.sampled.controllers import (
     ImpedanceLoop,
     display_loop,
 )
+from analysis.chain.velocity_filter import FILTER_KINDS, VelocityFilter
 from analysis.sampled.scenarios import SCENARIOS, Scenario, SimulationOptions, hbfd_options, scenario
 from analysis.sampled.terminations import (
     CAUSALITIES,
@@ -74,6 +84,7 @@ __all__ = [
     "CAUSALITY_KINDS",
     "CLAMPED",
     "CONSTRAINT",
+    "ComparisonRun",
     "ConstraintCausality",
     "CriticalChart",
     "CriticalMassChart",
@@ -81,14 +92,19 @@ __all__ = [
     "DisplayLoop",
     "Environment",
     "EnvironmentCausality",
+    "FILTER_KINDS",
     "FIRM_GRASP",
+    "FilterOptimum",
     "Grasp",
     "HANDS_OFF",
     "IMPEDANCE_LOOP",
     "ImpedanceLoop",
     "LoopSpec",
     "MAP_PARAMETERS",
+    "MeasuredTrials",
+    "OPTIMIZER_AREA",
     "PENALTY",
+    "PassivityComparison",
     "PenaltyCausality",
     "RIGID_GRASP",
     "SCENARIOS",
@@ -98,8 +114,11 @@ __all__ = [
     "Simulator",
     "StabilityMap",
     "Termination",
+    "TrialScore",
+    "VelocityFilter",
     "Verdict",
     "WorstCase",
+    "ZWidthRegion",
     "causality_kind",
     "closed_loop_matrices",
     "critical_mass",
@@ -116,25 +135,35 @@ __all__ = [
     "god_object_wall",
     "hbfd_options",
     "linear_stability_limit",
+    "load_trials",
+    "optimal_filter",
     "passivity_closed_form",
+    "passivity_comparison",
     "passivity_limit",
+    "passivity_limits",
     "penalty_wall",
     "plant_matrices",
     "radii",
     "required_damping",
     "rigid_stability_polynomial",
     "scenario",
+    "score_trials",
     "simulate",
     "spectral_radius",
     "stability_map",
     "virtual_wall",
     "worst_case",
+    "zwidth_region",
 ]
 
 #: Heavy names -> the submodule that defines them, imported on first use.
 _LAZY = {
-    **dict.fromkeys(("linear_stability_limit", "passivity_closed_form", "passivity_limit", "required_damping",
-                     "rigid_stability_polynomial", "virtual_wall"), ".passivity"),
+    **dict.fromkeys(("linear_stability_limit", "passivity_closed_form", "passivity_limit", "passivity_limits",
+                     "required_damping", "rigid_stability_polynomial", "virtual_wall"), ".passivity"),
+    **dict.fromkeys(("OPTIMIZER_AREA", "ZWidthRegion", "zwidth_region"), ".zwidth"),
+    **dict.fromkeys(("ComparisonRun", "PassivityComparison", "passivity_comparison"), ".pc_compare"),
+    **dict.fromkeys(("FilterOptimum", "MeasuredTrials", "TrialScore", "load_trials", "optimal_filter",
+                     "score_trials"), ".trials"),
     **dict.fromkeys(("LoopSpec", "closed_loop_matrices", "discretize_zoh", "plant_matrices", "spectral_radius"),
                     ".loop"),
     **dict.fromkeys(("CriticalChart", "CriticalMassChart", "SimulationResult", "StabilityMap", "Verdict",

@@ -187,15 +187,22 @@ class ImpedanceLoop(DisplayLoop):
         mem["delta"] = x0 - mem["xe"]
         return mem
 
+    def damper(self, p: SimpleNamespace, mem: dict) -> tuple[Any, Any]:
+        """``(k_c + b_c/T, b_c delta[k-1]/T)``: the coupling force is ``kcp delta - hist`` (eq. 4)."""
+        return p.kc + p.bc / p.T, (p.bc / p.T) * mem["delta"]
+
+    def filter_memory(self, p: SimpleNamespace, delta: Any, mem: dict, new: dict) -> None:
+        """Update velocity-filter states in ``new`` (none for the backward difference)."""
+
     def penalty_step(self, p: SimpleNamespace, y: Any, f: Any, mem: dict,
                      engaged: Engaged = linear_engaged) -> StepResult:
         """Eq. (4, 5): coupling and penalty wall, solved together (or the wall a sample late)."""
         T = p.T
-        kcp, g, dprev = p.kc + p.bc / T, p.bc / T, mem["delta"]
+        kcp, hist = self.damper(p, mem)
         new: dict = {}
         if p.lag:
             fin = mem["fe"]
-            delta = (fin + g * dprev) / kcp
+            delta = (fin + hist) / kcp
             xe = y - delta
             fe_c = p.kobj * (xe - p.xw) + (p.bobj / T) * (xe - mem["xe"])
             fe = pick(engaged(xe - p.xw, True), fe_c, 0.0 * fe_c)
@@ -203,20 +210,21 @@ class ImpedanceLoop(DisplayLoop):
             new["fe"] = fe
         else:
             kop = p.kobj + p.bobj / T
-            xe_c = (kcp * y - g * dprev + p.kobj * p.xw + (p.bobj / T) * mem["xe"]) / (kcp + kop)
-            xe_f = y - g * dprev / kcp
+            xe_c = (kcp * y - hist + p.kobj * p.xw + (p.bobj / T) * mem["xe"]) / (kcp + kop)
+            xe_f = y - hist / kcp
             xe = pick(engaged(xe_c - p.xw, True), xe_c, xe_f)
             delta = y - xe
-            u = kcp * delta - g * dprev
+            u = kcp * delta - hist
             fe = u
         new["delta"], new["xe"] = delta, xe
+        self.filter_memory(p, delta, mem, new)
         return u, new, fe, xe
 
     def constraint_step(self, p: SimpleNamespace, y: Any, f: Any, mem: dict,
                         engaged: Engaged = linear_engaged) -> StepResult:
         """Eq. (4, 6): the coupling drives an object of mass ``m_e``, held by a god-object wall."""
         T, lag = p.T, p.lag
-        kcp, g, dprev = p.kc + p.bc / T, p.bc / T, mem["delta"]
+        kcp, hist = self.damper(p, mem)
         me, be = p.me, p.bobj
         xprev, vprev = mem["xe"], mem["ve"]
         if lag:
@@ -224,16 +232,17 @@ class ImpedanceLoop(DisplayLoop):
             x_f = xprev + T * v_f
         else:
             a = me / (T * T)
-            x_f = (a * (xprev + T * vprev) + kcp * y - g * dprev + (be / T) * xprev) / (a + kcp + be / T)
+            x_f = (a * (xprev + T * vprev) + kcp * y - hist + (be / T) * xprev) / (a + kcp + be / T)
             v_f = (x_f - xprev) / T
         on = engaged(x_f - p.xw, p.wall)
         xe = pick(on, 0.0 * x_f + p.xw, x_f)
         ve = pick(on, 0.0 * v_f, v_f)
         delta = y - xe
-        u = kcp * delta - g * dprev
+        u = kcp * delta - hist
         new = {"delta": delta, "xe": xe, "ve": ve}
         if lag:
             new["fe"] = u
+        self.filter_memory(p, delta, mem, new)
         return u, new, u, xe
 
 

@@ -43,9 +43,11 @@ import numpy as np
 from analysis.chain.device import Device
 from analysis.chain.discretize import discretize_zoh
 from analysis.chain.state_space import chain_state_space
+from analysis.chain.velocity_filter import VelocityFilter
 from analysis.checks import boolean, integer
 from analysis.errors import ValidationError
 from analysis.sampled.controllers import DisplayLoop, Engaged, StepResult, display_loop, linear_engaged
+from analysis.sampled.filtered import filtered_loop
 from analysis.sampled.terminations import (
     Environment,
     EnvironmentCausality,
@@ -80,6 +82,8 @@ class LoopSpec:
     ``coupling`` is ``(k_c, b_c)`` for an impedance display and ``(m_c, b_c)`` for an
     admittance display; ``pd = (k_p, k_d)`` is the position loop of an admittance display
     (default the paper's 50 kN/m, 100 N s/m).  :attr:`loop` is the display's loop object.
+    ``velocity_filter`` (``None`` = the backward difference) filters the damping term's
+    velocity estimate (:mod:`analysis.sampled.filtered`).
     """
 
     display: str = "impedance"
@@ -87,6 +91,7 @@ class LoopSpec:
     pd: tuple[float, float] = (50e3, 100.0)
     delay_samples: int = 0
     implementation_delay: bool = False
+    velocity_filter: VelocityFilter | None = None
 
     def __post_init__(self) -> None:
         coupling, pd = display_loop(self.display).check_gains(self.coupling, self.pd)
@@ -94,11 +99,15 @@ class LoopSpec:
         object.__setattr__(self, "pd", pd)
         object.__setattr__(self, "delay_samples", integer("delay_samples", self.delay_samples, 0, 1000))
         object.__setattr__(self, "implementation_delay", boolean("implementation_delay", self.implementation_delay))
+        vf = self.velocity_filter
+        if vf is not None and not isinstance(vf, VelocityFilter):
+            raise ValidationError("velocity_filter", "a VelocityFilter or None", vf)
 
     @property
     def loop(self) -> DisplayLoop:
-        """The display's loop object (:mod:`analysis.sampled.controllers`)."""
-        return display_loop(self.display)
+        """The display's loop object (:mod:`analysis.sampled.controllers`), with the velocity
+        filter of :mod:`analysis.sampled.filtered` when one is set (not the backward difference)."""
+        return filtered_loop(self.display, self.velocity_filter)
 
 
 # -- plant ----------------------------------------------------------------------------------

@@ -43,12 +43,14 @@ from collections.abc import Callable
 import numpy as np
 from scipy import optimize
 
+from analysis.chain.velocity_filter import VelocityFilter
 from analysis.checks import Real, integer
 from analysis.errors import ValidationError
 
 __all__ = [
     "required_damping",
     "passivity_limit",
+    "passivity_limits",
     "passivity_closed_form",
     "linear_stability_limit",
     "rigid_stability_polynomial",
@@ -106,24 +108,39 @@ def required_damping(H: Callable[[np.ndarray], np.ndarray], sample_time: float, 
 
 
 def passivity_limit(mass: float, damping: float, sample_time: float, virtual_damping: float = 0.0,
-                    delay_samples: int = 0, points: int = 20001) -> float:
+                    delay_samples: int = 0, points: int = 20001, *,
+                    velocity_filter: VelocityFilter | None = None) -> float:
     """Largest passive wall stiffness K (N/m) of a rigid device, exactly (Colgate & Schenkel 1997).
 
-    The controller is the virtual wall ``z^{-d} (K + B (1 - z^{-1})/T)``.  The criterion is
-    linear in K, ``b >= K a(theta) + c(theta)`` with ``a = (T/2) sin((d+1/2) theta)/sin(theta/2)``
-    and ``c = -B cos((d+1) theta)``, so ``K_max = min over a > 0 of (b - c)/a``, found on a dense
-    grid and refined.  ``mass`` is validated but does not enter (the criterion is independent of
-    it).  Returns NaN when no K >= 0 is passive (e.g. ``|B| >= b`` without delay).
+    The controller is the virtual wall ``z^{-d} (K + B V(z))`` with the velocity estimate
+    ``V(z) = H_f(z) (1 - z^{-1})/T`` (``H_f = 1``, the backward difference, by default; see
+    :class:`~analysis.chain.velocity_filter.VelocityFilter`).  The criterion is linear in K,
+    ``b >= K a(theta) + c(theta)`` with ``a = (T/2) sin((d+1/2) theta)/sin(theta/2)`` and, from
+    ``(1 - e^{-j theta})^2 = -4 sin^2(theta/2) e^{-j theta}`` and ``1 - cos theta = 2
+    sin^2(theta/2)``::
+
+        c(theta) = (T/2) B Re{(1 - e^{-j theta})^2 e^{-j d theta} H_f / T} / (1 - cos theta)
+                 = -B Re{e^{-j (d+1) theta} H_f(e^{j theta})},
+
+    which is ``-B cos((d+1) theta)`` for ``H_f = 1``.  So ``K_max = min over a > 0 of
+    (b - c)/a``, found on a dense grid and refined.  ``mass`` is validated but does not enter
+    (the criterion is independent of it).  Returns NaN when no K >= 0 is passive (e.g.
+    ``|B| >= b`` without delay).
     """
     _POS("mass", mass)
     b = _NONNEG("damping", damping)
     T = _POS("sample_time", sample_time)
     B = _VIRTUAL_DAMPING("virtual_damping", virtual_damping)
     d = integer("delay_samples", delay_samples, 0)
+    filt = velocity_filter is not None and not velocity_filter.is_backward
 
     def parts(th):
         a = 0.5 * T * np.sin((d + 0.5) * th) / np.sin(0.5 * th)
-        c = -B * np.cos((d + 1) * th)
+        if filt:
+            hf = velocity_filter.filter_response(th / T, T)
+            c = -B * np.real(np.exp(-1j * (d + 1) * th) * hf)
+        else:
+            c = -B * np.cos((d + 1) * th)
         return a, c
 
     th = np.r_[1e-9, _theta_grid(points)]
@@ -142,6 +159,42 @@ def passivity_limit(mass: float, damping: float, sample_time: float, virtual_dam
         r = optimize.minimize_scalar(f, bounds=(th[i - 1], th[i + 1]), method="bounded", options={"xatol": 1e-13})
         kmax = min(kmax, float(r.fun))
     return kmax if kmax >= 0 else math.nan
+
+
+def passivity_limits(mass: float, damping: float, sample_time: float, virtual_dampings: np.ndarray,
+                     delay_samples: int = 0, points: int = 4001, *,
+                     velocity_filter: VelocityFilter | None = None) -> np.ndarray:
+    """:func:`passivity_limit` for many virtual dampings B at once (the Z-width region's passive edge).
+
+    Numerical kernel: ``K_max(B) = min over a(theta) > 0 of (b + B r(theta))/a(theta)`` with
+    ``r = Re{e^{-j(d+1) theta} H_f}`` on one grid of ``points`` for every B, then a second grid of
+    ``points`` between the neighbours of each minimum (error ~ (grid step / points)^2); NaN
+    where some ``a <= 0`` has ``c > b`` or the limit is negative, as :func:`passivity_limit`.
+    """
+    _POS("mass", mass)
+    b = _NONNEG("damping", damping)
+    T = _POS("sample_time", sample_time)
+    d = integer("delay_samples", delay_samples, 0)
+    B = np.asarray(virtual_dampings, float).reshape(-1, 1)
+    vf = velocity_filter
+
+    def ratio(th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        a = 0.5 * T * np.sin((d + 0.5) * th) / np.sin(0.5 * th)
+        e = np.exp(-1j * (d + 1) * th)
+        r = np.real(e if vf is None or vf.is_backward else e * vf.filter_response(th / T, T))
+        c = -B * r
+        with np.errstate(divide="ignore", invalid="ignore"):
+            q = np.where(a > 0, (b - c) / np.where(a > 0, a, 1.0), np.inf)
+        return q, (a <= 0) & (c > b)
+
+    th = np.r_[1e-9, _theta_grid(points)]
+    q, bad = ratio(th)
+    i = np.argmin(q, axis=1)
+    lo, hi = th[np.maximum(i - 1, 0)], th[np.minimum(i + 1, th.size - 1)]
+    fine = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, points)[None, :]
+    qf = ratio(fine)[0]  # row i of the fine grid belongs to B[i]: elementwise broadcast
+    kmax = np.minimum(q.min(axis=1), qf.min(axis=1))
+    return np.where(bad.any(axis=1) | (kmax < 0), np.nan, kmax)
 
 
 def passivity_closed_form(damping: float, sample_time: float, virtual_damping: float = 0.0,

@@ -16,7 +16,7 @@ class WorstCase:
     """Worst spectral radius over a sweep of terminations and the termination attaining it.
 
     ``radii[i]`` belongs to ``terminations[i]``; ``stable`` is ``spectral_radius <= 1``
-    (rigid-body modes at z = 1 count as 1, see :func:`analysis.sampled_loop.spectral_radius`).
+    (rigid-body modes at z = 1 count as 1, see :func:`analysis.sampled.loop.spectral_radius`).
     """
 
     spectral_radius: float
@@ -95,7 +95,11 @@ class SimulationResult:
     ``sum F_d (x_n[k+1] - x_n[k])`` (exact for a held force; negative means the display
     generated energy); ``energy_observed`` is the same with encoder readings (what a
     passivity observer on the hardware would compute); ``energy_human`` the work of the human
-    on the handle (trapezoidal).
+    on the handle (trapezoidal).  With the passivity observer on
+    (:class:`~analysis.sampled.scenarios.SimulationOptions`), ``passivity_energy`` is the
+    observer's energy after each sample's update (equal to ``energy_observed``) and
+    ``pc_damping`` the controller's added damping ``alpha`` (N s/m; zeros without control);
+    both are ``None`` otherwise (see :mod:`analysis.sampled.actuation`).
     """
 
     t: np.ndarray
@@ -114,6 +118,8 @@ class SimulationResult:
     verdict: Verdict
     substeps: int
     events: int
+    passivity_energy: np.ndarray | None = None
+    pc_damping: np.ndarray | None = None
 
     @property
     def handle_position(self) -> np.ndarray:

@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from analysis.chain.limits import DAMPING, GAIN_STIFFNESS, MASS
 from analysis.checks import Real, SettingsRecord, boolean, check_elements, choice, integer, string
 from analysis.errors import ValidationError
 from analysis.sampled.terminations import (
@@ -65,6 +66,10 @@ class SimulationOptions(SettingsRecord):
     off.  ``delay_samples`` is a computation delay; ``implementation_delay`` the one-sample
     delay between coupling and environment (explicit integration).  ``substeps`` sub-divide the
     sample for the friction forces (unused without friction: the step is then exact).
+    ``passivity_observer`` records the energy into the virtual environment port;
+    ``passivity_control`` (implies the observer) adds Hannaford & Ryu's variable damping that
+    removes an observed energy excess (conventions in :mod:`analysis.sampled.actuation`);
+    ``passivity_max_damping`` (N s/m; 0 = off, Hannaford & Ryu's unbounded PC) caps that damping.
     """
 
     record_name = "simulation options"
@@ -79,9 +84,15 @@ class SimulationOptions(SettingsRecord):
     thermal_time_constant: float = 1.0
     delay_samples: int = 0
     implementation_delay: bool = False
+    passivity_observer: bool = False
+    passivity_control: bool = False
+    passivity_max_damping: float = 0.0
 
     def __post_init__(self) -> None:
         s = object.__setattr__
+        s(self, "passivity_observer", boolean("passivity_observer", self.passivity_observer))
+        s(self, "passivity_control", boolean("passivity_control", self.passivity_control))
+        s(self, "passivity_max_damping", _NONNEG("passivity_max_damping", self.passivity_max_damping))
         s(self, "substeps", integer("substeps", self.substeps, 1, 4096))
         s(self, "encoder_resolution", _NONNEG("encoder_resolution", self.encoder_resolution))
         s(self, "force_resolution", _NONNEG("force_resolution", self.force_resolution))
@@ -152,9 +163,9 @@ class Scenario(SettingsRecord):
         choice("causality", self.causality, CAUSALITIES, allowed="impedance or admittance")
         s(self, "wall", boolean("wall", self.wall))
         s(self, "wall_position", _ANY("wall_position", self.wall_position))
-        s(self, "wall_stiffness", _NONNEG("wall_stiffness", self.wall_stiffness))
-        s(self, "wall_damping", _NONNEG("wall_damping", self.wall_damping))
-        s(self, "object_mass", _POS("object_mass", self.object_mass))
+        s(self, "wall_stiffness", GAIN_STIFFNESS("wall_stiffness", self.wall_stiffness))
+        s(self, "wall_damping", DAMPING("wall_damping", self.wall_damping))
+        s(self, "object_mass", MASS("object_mass", self.object_mass))
         if isinstance(self.grasp, dict):
             s(self, "grasp", Grasp.from_dict(self.grasp))
         if not isinstance(self.grasp, Grasp):

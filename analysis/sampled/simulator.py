@@ -21,7 +21,9 @@ signals after it are NaN.
 
 Each sample: the human's grasp and push (:meth:`Simulator.hand`), the sensors
 (:meth:`Simulator.sample`), the controller step, the actuator (delay, peak clip and I^2 t
-fold-back), the record with the energy integrals, then the exact propagation to the next sample.
+fold-back; :mod:`analysis.sampled.actuation`, with the optional passivity observer and controller
+of Hannaford & Ryu), the record with the energy integrals, then the exact propagation to the next
+sample.
 
 Verdict (``detect``)
 --------------------
@@ -34,14 +36,18 @@ otherwise (at rest or decaying).  Rest threshold: ``max(2 encoder counts, 1 um)`
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
 from analysis.chain.device import Device
 from analysis.chain.discretize import discretize_zoh
+from analysis.chain.limits import check_simulation_size
 from analysis.checks import positive
 from analysis.errors import ValidationError
+from analysis.chain.velocity_filter import VelocityFilter
+from analysis.sampled.actuation import Actuator
 from analysis.sampled.controllers import display_loop
 from analysis.sampled.loop import LoopSpec, controller_params, plant_matrices, sensor_rows
 from analysis.sampled.results import SimulationResult, Verdict
@@ -153,33 +159,6 @@ class _Propagators:
         return events
 
 
-class _Actuator:
-    """The force path after the controller: computation delay, peak clip and I^2 t fold-back."""
-
-    def __init__(self, options: SimulationOptions, T: float, delay_samples: int) -> None:
-        self.delay = delay_samples
-        self.buffer = [0.0] * delay_samples
-        self.peak, self.continuous = options.force_peak, options.force_continuous
-        self.thermal = self.continuous < math.inf
-        self.alpha = T / options.thermal_time_constant
-        self.mean_square = 0.0
-
-    def apply(self, u: float) -> float:
-        """The force applied for the controller output ``u`` (state: delay line, thermal model)."""
-        if self.delay:
-            self.buffer.append(u)
-            u = self.buffer.pop(0)
-        fpk, fcont = self.peak, self.continuous
-        if u > fpk:
-            u = fpk
-        elif u < -fpk:
-            u = -fpk
-        if self.thermal and self.mean_square > fcont * fcont:
-            u = min(max(u, -fcont), fcont)
-        self.mean_square += self.alpha * (u * u - self.mean_square)
-        return u
-
-
 class _Trace:
     """The signals of one run, sample by sample, and their energy integrals."""
 
@@ -258,12 +237,16 @@ class Simulator:
         """Simulate ``duration`` s (default the scenario's) and classify the run (:func:`detect`)."""
         sc, T = self.scenario, self.device.sample_time
         D = sc.duration if duration is None else positive("duration", duration, "s")
-        trace = _Trace(int(round(D / T)) + 1, self.device.n)
+        trace = _Trace(check_simulation_size(D, T, self.substeps, self.device.n), self.device.n)
         mem = self.loop.rest_memory(self.names, sc.initial_position, sc.wall, self.params.xw)
-        events = self._steps(self.initial_state(), mem, trace)
+        actuator = Actuator(self.options, T, self.spec.delay_samples, trace.size)
+        events = self._steps(self.initial_state(), mem, trace, actuator)
         t = np.arange(trace.size) * T
         verdict = detect(t, trace.pos[:, -1], self.options.encoder_resolution)
-        return trace.result(t, verdict, self.substeps, events)
+        res = trace.result(t, verdict, self.substeps, events)
+        if actuator.energy is None:
+            return res
+        return dataclasses.replace(res, passivity_energy=actuator.energy, pc_damping=actuator.damping)
 
     def initial_state(self) -> np.ndarray:
         """``(X, F_d, F_ext, 1)`` with every mass at the scenario's initial position and velocity."""
@@ -294,19 +277,19 @@ class Simulator:
             f = round(f / res_f) * res_f
         return y, f
 
-    def _steps(self, z: np.ndarray, mem: dict, trace: _Trace) -> int:
+    def _steps(self, z: np.ndarray, mem: dict, trace: _Trace, actuator: Actuator) -> int:
         """The run, sample after sample (module docstring); returns the number of dyadic splits."""
         sc, p, n2 = self.scenario, self.params, 2 * self.device.n
         T, last, sub = self.device.sample_time, trace.size - 1, self.substeps
         step, touches = self.loop.step_for(self.kind), self.kind.contact
-        actuate = _Actuator(self.options, T, self.spec.delay_samples).apply
+        actuate = actuator.apply
         events = 0
         for k in range(trace.size):
             grasp, push = self.hand(k * T)
             pr = self.props[grasp]
             y, f = self.sample(z)
             u, mem, fe, xe = step(p, y, f, mem, _sim_engaged)
-            u = actuate(u)
+            u = actuate(u, y)
             z[n2] = u
             z[n2 + 1] = push
             trace.record(k, z, y, f, u, fe, xe, sc.wall and touches(xe, p.xw), pr.hand_force(z, push))
@@ -345,15 +328,17 @@ def detect(t: np.ndarray, x: np.ndarray, encoder_resolution: float = 0.0) -> Ver
 
 def simulate(profile_or_device, scenario: Scenario | str, duration: float | None = None, *,
              display: str | None = None, coupling: tuple[float, float] | None = None,
-             pd: tuple[float, float] | None = None, options: SimulationOptions | None = None) -> SimulationResult:
-    """Simulate a scenario (a :class:`Scenario` or a preset name from :data:`analysis.scenarios.SCENARIOS`).
+             pd: tuple[float, float] | None = None, options: SimulationOptions | None = None,
+             velocity_filter: VelocityFilter | None = None) -> SimulationResult:
+    """Simulate a scenario (a :class:`Scenario` or a preset name from :data:`analysis.sampled.scenarios.SCENARIOS`).
 
     ``profile_or_device``: a :class:`analysis.profiles.Profile` (device, display and couplings
     taken from it) or a :class:`Device`.  ``display``, ``coupling`` (``(k_c, b_c)`` or
     ``(m_c, b_c)``) and ``pd`` override the profile; for a bare device they default to an
     impedance display with the paper's experimental coupling (50 kN/m, 100 N s/m) and, for an
     admittance display, (8 kg, 400 N s/m) with ``k_p, k_d = 50 kN/m, 100 N s/m``.
-    Delays come from ``options``.
+    Delays and the passivity observer/controller come from ``options``; ``velocity_filter``
+    filters the controller's damping term (:mod:`analysis.sampled.filtered`).
     """
     from analysis.sampled.scenarios import scenario as preset
 
@@ -376,5 +361,5 @@ def simulate(profile_or_device, scenario: Scenario | str, duration: float | None
         pd = pd or (prof.kp, prof.kd)
     else:
         raise ValidationError("profile_or_device", "a Profile or a Device", type(profile_or_device).__name__)
-    spec = LoopSpec(loop.name, coupling, pd, opt.delay_samples, opt.implementation_delay)
+    spec = LoopSpec(loop.name, coupling, pd, opt.delay_samples, opt.implementation_delay, velocity_filter)
     return Simulator(dev, spec, sc, opt).run(duration)

@@ -1,7 +1,7 @@
 """Exact stability sweeps of the sampled loop: worst case, critical couplings, stability maps.
 
 Everything here reduces to spectral radii of the closed-loop matrices of
-:mod:`analysis.sampled_loop`, computed in batches (one ``expm`` per distinct grasp, one stacked
+:mod:`analysis.sampled.loop`, computed in batches (one ``expm`` per distinct grasp, one stacked
 ``np.linalg.eigvals`` per causality).  A linear loop is stable exactly when the spectral radius
 is at most 1 (rigid-body modes of free motion sit at z = 1 and count as 1).
 
@@ -24,6 +24,8 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from analysis.chain.device import Device
+from analysis.chain.limits import MAX_MAP_POINTS, check_count
+from analysis.chain.velocity_filter import VelocityFilter
 from analysis.checks import nonnegative, positive
 from analysis.errors import ValidationError
 from analysis.sampled.controllers import display_loop
@@ -78,13 +80,15 @@ def radii(device: Device, spec: LoopSpec, terminations: Sequence[Termination],
 
 def worst_case(device: Device, display: str = "impedance", coupling: tuple[float, float] = (50e3, 100.0),
                terminations: Sequence[Termination] | None = None, *, pd: tuple[float, float] = (50e3, 100.0),
-               delay_samples: int = 0, implementation_delay: bool = False) -> WorstCase:
+               delay_samples: int = 0, implementation_delay: bool = False,
+               velocity_filter: VelocityFilter | None = None) -> WorstCase:
     """Worst spectral radius over human grasps x environments, and the termination attaining it.
 
-    Default sweep (:func:`analysis.terminations.default_terminations`): hands-off to a rigid
+    Default sweep (:func:`analysis.sampled.terminations.default_terminations`): hands-off to a rigid
     grasp (64 grasps) times free motion to rigid wall in both environment causalities (13).
+    ``velocity_filter`` filters the damping term's velocity (default the backward difference).
     """
-    spec = LoopSpec(display, coupling, pd, delay_samples, implementation_delay)
+    spec = LoopSpec(display, coupling, pd, delay_samples, implementation_delay, velocity_filter)
     terms = tuple(default_terminations() if terminations is None else terminations)
     if not terms:
         raise ValidationError("terminations", "at least one termination", [])
@@ -120,7 +124,8 @@ def _first_crossing(f, lo: float, hi: float, increasing: bool) -> float:
 
 def critical_stiffness(device: Device, bc: float, delay_samples: int = 0, *, environment: Environment | None = None,
                        grasp: Grasp = HANDS_OFF, implementation_delay: bool = False,
-                       k_range: tuple[float, float] = (1.0, 1e9)) -> float:
+                       k_range: tuple[float, float] = (1.0, 1e9),
+                       velocity_filter: VelocityFilter | None = None) -> float:
     """Largest stable coupling stiffness k_c (N/m) of an impedance display, exactly.
 
     Default termination: hands-off against a rigid wall -- the god-object wall, which holds the
@@ -128,7 +133,8 @@ def critical_stiffness(device: Device, bc: float, delay_samples: int = 0, *, env
     worst case for impedance displays.  ``delay_samples`` is a computation delay between
     sampling and the force output.  Returns the first crossing of spectral radius 1 (see the
     module docstring), ``inf`` if none below ``k_range[1]``, ``0.0`` if already unstable at
-    ``k_range[0]``.
+    ``k_range[0]``.  ``velocity_filter`` filters the coupling's damping term
+    (:mod:`analysis.sampled.filtered`; default ``None``, the backward difference).
     """
     nonnegative("bc", bc, "N s/m")
     env = god_object_wall() if environment is None else environment
@@ -136,7 +142,7 @@ def critical_stiffness(device: Device, bc: float, delay_samples: int = 0, *, env
 
     def f(ks: np.ndarray) -> np.ndarray:
         spec = LoopSpec("impedance", (1.0, float(bc)), delay_samples=delay_samples,
-                        implementation_delay=implementation_delay)
+                        implementation_delay=implementation_delay, velocity_filter=velocity_filter)
         return radii(device, spec, term * ks.size, {"kc": ks})
 
     return _first_crossing(f, k_range[0], k_range[1], increasing=True)
@@ -168,20 +174,22 @@ def critical_stiffness_chart(device: Device, bc_values, delay_samples: int = 0, 
 
 def critical_mass(device: Device, bc: float, pd: tuple[float, float] = (50e3, 100.0), delay_samples: int = 0, *,
                   environment: Environment | None = None, grasp: Grasp = RIGID_GRASP,
-                  implementation_delay: bool = False, m_range: tuple[float, float] = (1e-3, 1e4)) -> float:
+                  implementation_delay: bool = False, m_range: tuple[float, float] = (1e-3, 1e4),
+                  velocity_filter: VelocityFilter | None = None) -> float:
     """Smallest stable coupling mass m_c (kg) of an admittance display, exactly.
 
     Default termination: the paper's worst case for admittance displays, a rigid grasp
-    (:data:`analysis.terminations.RIGID_GRASP`) in free motion (penalty causality, ``F_e = 0``).
+    (:data:`analysis.sampled.terminations.RIGID_GRASP`) in free motion (penalty causality, ``F_e = 0``).
     Scans m_c downward from ``m_range[1]``; returns ``0.0`` if nothing down to ``m_range[0]`` is
-    unstable and ``inf`` if ``m_range[1]`` already is.
+    unstable and ``inf`` if ``m_range[1]`` already is.  ``velocity_filter`` filters the PD
+    loop's derivative term (default ``None``, the backward difference).
     """
     positive("bc", bc, "N s/m")
     env = free_motion("impedance") if environment is None else environment
     term = (Termination(grasp, env),)
 
     def f(ms: np.ndarray) -> np.ndarray:
-        spec = LoopSpec("admittance", (1.0, float(bc)), pd, delay_samples, implementation_delay)
+        spec = LoopSpec("admittance", (1.0, float(bc)), pd, delay_samples, implementation_delay, velocity_filter)
         return radii(device, spec, term * ms.size, {"mc": ms})
 
     return _first_crossing(f, m_range[0], m_range[1], increasing=False)
@@ -209,7 +217,8 @@ MAP_PARAMETERS = {
 def stability_map(device: Device, x: tuple[str, Sequence[float]], y: tuple[str, Sequence[float]], *,
                   display: str = "impedance", coupling: tuple[float, float] = (50e3, 100.0),
                   pd: tuple[float, float] = (50e3, 100.0), termination: Termination | None = None,
-                  delay_samples: int = 0, implementation_delay: bool = False) -> StabilityMap:
+                  delay_samples: int = 0, implementation_delay: bool = False,
+                  velocity_filter: VelocityFilter | None = None) -> StabilityMap:
     """Spectral radius over a grid of two parameters, in one batched sweep.
 
     ``x`` and ``y`` are ``(name, values)`` with names from :data:`MAP_PARAMETERS`, e.g.
@@ -225,9 +234,10 @@ def stability_map(device: Device, x: tuple[str, Sequence[float]], y: tuple[str, 
         raise ValidationError("map parameter", "two different parameters", yn)
     xv = np.asarray(xv, float).reshape(-1)
     yv = np.asarray(yv, float).reshape(-1)
+    check_count("map points", xv.size * yv.size, MAX_MAP_POINTS, f"{xv.size} × {yv.size}")
     if termination is None:
         termination = display_loop(display).default_termination()
-    spec = LoopSpec(display, coupling, pd, delay_samples, implementation_delay)
+    spec = LoopSpec(display, coupling, pd, delay_samples, implementation_delay, velocity_filter)
     X, Y = np.meshgrid(xv, yv)
     values = {xn: X.ravel(), yn: Y.ravel()}
     terms = []

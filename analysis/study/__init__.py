@@ -7,12 +7,17 @@
 * :mod:`.compute` -- stability, designs, design chart, exact sampled-data limits, stability
   map and simulation, with progress and cancel hooks;
 * :mod:`.wall` -- the wall controller and the disturbance observer of Eom, Suh & Yi;
-* :mod:`.summary` -- the plain-data summaries of ``zwidth analyze`` and ``zwidth design``.
+* :mod:`.summary` -- the plain-data summaries of ``zwidth analyze`` and ``zwidth design``;
+* :mod:`.zwidth` -- the controller as built: the (B, K) Z-width region with its velocity
+  filter, the optimum cut-off and the hardware trials (issue 15);
+* :mod:`.identify` -- identification fits, the profile's identification section and the
+  robust designs over its parameter box (issue 14);
+* :mod:`.citations` -- the full references of the papers whose equation numbers zwidth shows.
 """
 
 from __future__ import annotations
 
-from .displays import ADMITTANCE, DISPLAY_KINDS, IMPEDANCE, DisplayKind, Gain, display_kind
+from .displays import ADMITTANCE, DISPLAY_KINDS, IMPEDANCE, DisplayKind, Gain, display_kind, profile_filter
 from .quantities import DIGITS, QUANTITIES, Quantity, format_number, quantity
 from .headline import DESIGN_KEYS, HEADLINE_KEYS, Headline, designs, headline
 from .compute import (
@@ -22,6 +27,7 @@ from .compute import (
     ChartResult,
     delays,
     design_chart,
+    design_radius,
     exact_chart,
     exact_limit,
     feasible_damping,
@@ -31,6 +37,7 @@ from .compute import (
     max_stiffness,
     min_mass,
     simulation,
+    scenario_matches,
     simulation_section,
     stability,
     stability_map,
@@ -38,6 +45,12 @@ from .compute import (
 from .wall import (
     DEFAULT_BC,
     OBSERVER_W,
+    PAPER_MASS,
+    default_bc,
+    derived_wall_settings,
+    mass_scale,
+    observer_device_label,
+    wall_device_label,
     WallAdmittances,
     WallPoint,
     WallTradeoff,
@@ -53,17 +66,54 @@ from .wall import (
     wall_step,
     wall_tradeoff,
 )
+from .citations import REFERENCES, Reference, citation_text
 from .summary import SUMMARY_VERSION, design_summary, format_design, format_summary, summarize
+from .zwidth import (
+    OPTIMUM_CUTOFFS,
+    ZWidthStudy,
+    controller_section,
+    filter_optimum,
+    optimum_kind,
+    profile_trials,
+    region_b,
+    trial_score,
+    twoport_limit,
+    region_wall,
+    wall_edits,
+    with_filter,
+    zwidth_region,
+)
+from .identify import (
+    BodeData,
+    IdentifyResult,
+    RobustDesigns,
+    bode_data,
+    fit_curves,
+    identify_chain,
+    load_measurements,
+    parameter_rows,
+    parse_fixed,
+    profile_with_fit,
+    robust_designs,
+    section_measurements,
+)
 
 __all__ = [
     "ADMITTANCE", "DISPLAY_KINDS", "IMPEDANCE", "DisplayKind", "Gain", "display_kind",
     "DIGITS", "QUANTITIES", "Quantity", "format_number", "quantity",
     "DESIGN_KEYS", "HEADLINE_KEYS", "Headline", "designs", "headline",
-    "DESIGN_CHART", "EXACT_CHART", "MAP_POINTS", "ChartResult", "delays", "design_chart", "exact_chart",
+    "DESIGN_CHART", "EXACT_CHART", "MAP_POINTS", "ChartResult", "delays", "design_chart", "design_radius", "exact_chart",
     "exact_limit", "feasible_damping", "map_arguments", "map_params", "map_point", "max_stiffness", "min_mass",
-    "simulation", "simulation_section", "stability", "stability_map",
+    "scenario_matches", "simulation", "simulation_section", "stability", "stability_map",
     "DEFAULT_BC", "OBSERVER_W", "WallAdmittances", "WallPoint", "WallTradeoff", "admittance_grid",
     "observer_coupling", "observer_response", "observer_settings", "observer_step", "wall_admittances",
     "wall_design", "wall_point", "wall_settings", "wall_step", "wall_tradeoff",
+    "PAPER_MASS", "default_bc", "derived_wall_settings", "mass_scale", "observer_device_label", "wall_device_label",
     "SUMMARY_VERSION", "design_summary", "format_design", "format_summary", "summarize",
+    "BodeData", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "identify_chain", "load_measurements", "parameter_rows",
+    "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements",
+    "OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "filter_optimum", "optimum_kind", "profile_trials",
+    "region_b", "trial_score", "twoport_limit", "wall_edits", "region_wall", "with_filter", "zwidth_region",
+    "profile_filter",
+    "REFERENCES", "Reference", "citation_text",
 ]

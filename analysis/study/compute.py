@@ -14,14 +14,17 @@ from typing import Any
 
 import numpy as np
 
+from analysis.chain.limits import MAX_CHART_POINTS, MAX_MAP_POINTS, check_count
 from analysis.profiles.model import Profile
 from analysis.profiles.sections import SimulationSection
 from analysis.sampled import (
     HANDS_OFF,
     RIGID_GRASP,
+    SCENARIOS,
     CriticalChart,
     CriticalMassChart,
     SimulationOptions,
+    Scenario,
     SimulationResult,
     StabilityMap,
     critical_mass,
@@ -33,7 +36,7 @@ from analysis.sampled import (
 )
 from analysis.sampled import stability_map as sampled_stability_map
 from analysis.sampled.terminations import PAPER_WALL_STIFFNESS
-from analysis.study.displays import DisplayKind, display_kind
+from analysis.study.displays import DisplayKind, display_kind, profile_filter
 from analysis.twoport.admittance import AdmittanceDisplay
 from analysis.twoport.impedance import ImpedanceDisplay
 from analysis.twoport.results import (
@@ -49,7 +52,8 @@ from analysis.twoport.results import (
 
 __all__ = ["ChartResult", "DESIGN_CHART", "EXACT_CHART", "MAP_POINTS", "stability", "max_stiffness",
            "feasible_damping", "min_mass", "design_chart", "exact_chart", "exact_limit", "simulation_section",
-           "delays", "map_params", "map_arguments", "stability_map", "map_point", "simulation"]
+           "scenario_matches",
+           "delays", "map_params", "map_arguments", "stability_map", "map_point", "design_radius", "simulation"]
 
 #: the design chart's grid: b_c (impedance) or m_c (admittance) ranges and points per chart
 DESIGN_CHART = {"bc_range": (1.0, 1e4), "mc_range": (1e-3, 1e3), "points": 40}
@@ -74,18 +78,18 @@ def stability(profile: Profile, refine: bool = True) -> StabilityResult:
 
 def max_stiffness(profile: Profile) -> StiffnessDesign:
     """The largest k_c satisfying eq. (9) at the profile's b_c."""
-    return ImpedanceDisplay(profile.device).max_stiffness(profile.bc)
+    return ImpedanceDisplay(profile.device, velocity_filter=profile_filter(profile)).max_stiffness(profile.bc)
 
 
 def feasible_damping(profile: Profile) -> DampingInterval:
     """The b_c interval satisfying eq. (21) at the profile's m_c."""
-    return AdmittanceDisplay(profile.device, profile.kp, profile.kd).feasible_damping(profile.mc)
+    return AdmittanceDisplay(profile.device, profile.kp, profile.kd, velocity_filter=profile_filter(profile)).feasible_damping(profile.mc)
 
 
 def min_mass(profile: Profile) -> MassDesign | None:
     """The smallest m_c for which some b_c satisfies eq. (21); ``None`` when none is found."""
     try:
-        return AdmittanceDisplay(profile.device, profile.kp, profile.kd).min_mass()
+        return AdmittanceDisplay(profile.device, profile.kp, profile.kd, velocity_filter=profile_filter(profile)).min_mass()
     except ValueError:
         return None
 
@@ -96,6 +100,7 @@ def design_chart(profile: Profile, kind: DisplayKind | str | None = None, *, bc_
     """The design chart of the profile's display (or ``kind``): the largest k_c over b_c
     (eq. 9), or the feasible b_c interval over m_c (eq. 21), on a geometric grid."""
     kind = display_kind(profile if kind is None else kind)
+    check_count("chart points", int(points), MAX_CHART_POINTS)
     disp = kind.build(profile)
     if isinstance(disp, ImpedanceDisplay):
         chart: Any = disp.stiffness_chart(np.geomspace(*bc_range, int(points)), progress=progress,
@@ -106,11 +111,23 @@ def design_chart(profile: Profile, kind: DisplayKind | str | None = None, *, bc_
     return None if chart is None else ChartResult(kind.name, chart)
 
 
+def scenario_matches(profile: Profile, sc: Scenario) -> bool:
+    """False for the paper's worst case of the *other* display (e.g. ``impedance_worst_case``, a
+    penalty wall, on an admittance display); any other scenario is the user's choice and matches."""
+    own = f"{display_kind(profile).name}_worst_case"
+    return not (sc.name.endswith("_worst_case") and sc.name in SCENARIOS and sc.name != own)
+
+
 def simulation_section(profile: Profile) -> SimulationSection:
-    """The profile's simulation section, or ideal sensors and the paper's worst case for its display."""
-    if profile.simulation is not None:
+    """What the Sampled-data tab simulates: the profile's simulation section, its scenario following
+    the display (:func:`scenario_matches`: the other display's worst case becomes this display's,
+    the options kept), or, without a section, ideal sensors and the paper's worst case for its display."""
+    own = scenario(f"{display_kind(profile).name}_worst_case")
+    if profile.simulation is None:
+        return SimulationSection(options=SimulationOptions(), scenario=own)
+    if scenario_matches(profile, profile.simulation.scenario):
         return profile.simulation
-    return SimulationSection(options=SimulationOptions(), scenario=scenario(f"{display_kind(profile).name}_worst_case"))
+    return SimulationSection(options=profile.simulation.options, scenario=own)
 
 
 def delays(profile: Profile) -> tuple[int, bool]:
@@ -124,21 +141,23 @@ def exact_chart(profile: Profile, *, bc_range: tuple[float, float] = EXACT_CHART
                 cancelled: Cancelled | None = None) -> CriticalChart | CriticalMassChart | None:
     """The exact sampled-data limit over b_c: the largest stable k_c (impedance) or the
     smallest stable m_c (admittance) of the real loop, with the profile's delays."""
-    bcs = np.geomspace(*bc_range, int(points))
+    bcs = np.geomspace(*bc_range, check_count("chart points", int(points), MAX_CHART_POINTS))
     d, impl = delays(profile)
     if display_kind(profile).is_impedance:
         return critical_stiffness_chart(profile.device, bcs, d, implementation_delay=impl, progress=progress,
-                                        cancelled=cancelled)
+                                        cancelled=cancelled, velocity_filter=profile_filter(profile))
     return critical_mass_chart(profile.device, bcs, (profile.kp, profile.kd), d, implementation_delay=impl,
-                               progress=progress, cancelled=cancelled)
+                               progress=progress, cancelled=cancelled, velocity_filter=profile_filter(profile))
 
 
 def exact_limit(profile: Profile) -> float:
     """The exact limit at the profile's b_c: the largest stable k_c or the smallest stable m_c."""
     d, impl = delays(profile)
     if display_kind(profile).is_impedance:
-        return critical_stiffness(profile.device, float(profile.bc), d, implementation_delay=impl)
-    return critical_mass(profile.device, float(profile.bc_adm), (profile.kp, profile.kd), d, implementation_delay=impl)
+        return critical_stiffness(profile.device, float(profile.bc), d, implementation_delay=impl,
+                                  velocity_filter=profile_filter(profile))
+    return critical_mass(profile.device, float(profile.bc_adm), (profile.kp, profile.kd), d, implementation_delay=impl,
+                         velocity_filter=profile_filter(profile))
 
 
 def map_params(profile: Profile, axes: tuple[str, str] | None = None) -> dict[str, Any]:
@@ -155,12 +174,13 @@ def map_arguments(profile: Profile, params: dict[str, Any]) -> dict[str, Any]:
     500 kN/m penalty wall; admittance: rigid grasp in free motion).
     """
     n = int(params["points"])
+    check_count("map points", n * n, MAX_MAP_POINTS, f"{n} × {n}; at most 400 per axis")
     d, impl = delays(profile)
     kind = display_kind(profile)
     return dict(x=(params["x"], np.geomspace(*params["x_range"], n)),
                 y=(params["y"], np.geomspace(*params["y_range"], n)),
                 display=kind.name, coupling=kind.coupling(profile), pd=(profile.kp, profile.kd), delay_samples=d,
-                implementation_delay=impl)
+                implementation_delay=impl, velocity_filter=profile_filter(profile))
 
 
 def stability_map(profile: Profile, params: dict[str, Any] | None = None, *, progress: Progress | None = None,
@@ -191,6 +211,17 @@ def map_point(profile: Profile, x_name: str, y_name: str) -> tuple[float, float 
     return float(first), (None if y is None else float(y))
 
 
+def design_radius(profile: Profile, x_name: str, y_name: str) -> float | None:
+    """The exact spectral radius of the sampled loop at the current design, on a map of ``x_name``
+    and ``y_name`` (the same loop and termination as :func:`stability_map`, one point: cheap
+    enough to follow a slider drag).  ``None`` when the design is not a point of that map."""
+    x, y = map_point(profile, x_name, y_name)
+    if y is None or not (x > 0 and y > 0):
+        return None
+    args = map_arguments(profile, {"x": x_name, "x_range": (x, x), "y": y_name, "y_range": (y, y), "points": 1})
+    return float(sampled_stability_map(profile.device, **args).spectral_radius[0, 0])
+
+
 def simulation(profile: Profile, *, progress: Progress | None = None, cancelled: Cancelled | None = None
                ) -> SimulationResult | None:
     """One run of the nonlinear simulator on the profile's scenario.  It has no progress hook of
@@ -200,7 +231,7 @@ def simulation(profile: Profile, *, progress: Progress | None = None, cancelled:
         progress(0, 1)
     if cancelled is not None and cancelled():
         return None
-    res = simulate(profile, sec.scenario, options=sec.options)
+    res = simulate(profile, sec.scenario, options=sec.options, velocity_filter=profile_filter(profile))
     if progress is not None:
         progress(1, 1)
     return None if cancelled is not None and cancelled() else res

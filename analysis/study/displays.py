@@ -13,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from analysis.chain.velocity_filter import VelocityFilter
 from analysis.profiles.model import Profile
 from analysis.twoport.admittance import AdmittanceDisplay
 from analysis.twoport.display_base import DisplayBase
@@ -20,7 +21,7 @@ from analysis.twoport.impedance import ImpedanceDisplay
 from analysis.sampled.results import CriticalChart, CriticalMassChart
 from analysis.twoport.results import MassChart, StabilityResult, StiffnessChart
 
-__all__ = ["Gain", "DisplayKind", "IMPEDANCE", "ADMITTANCE", "DISPLAY_KINDS", "display_kind"]
+__all__ = ["Gain", "DisplayKind", "IMPEDANCE", "ADMITTANCE", "DISPLAY_KINDS", "display_kind", "profile_filter"]
 
 
 @dataclass(frozen=True)
@@ -61,10 +62,12 @@ class DisplayKind:
 
     # -- the analysis objects --------------------------------------------------------------
     def build(self, profile: Profile) -> DisplayBase:
-        """A fresh :class:`ImpedanceDisplay` or :class:`AdmittanceDisplay` of the profile's device."""
+        """A fresh :class:`ImpedanceDisplay` or :class:`AdmittanceDisplay` of the profile's device,
+        with the profile's velocity filter in the coupling (eq. 4's Z_c in eq. 9, K_d in eq. 21)."""
+        vf = profile_filter(profile)
         if self.is_impedance:
-            return ImpedanceDisplay(profile.device)
-        return AdmittanceDisplay(profile.device, profile.kp, profile.kd)
+            return ImpedanceDisplay(profile.device, velocity_filter=vf)
+        return AdmittanceDisplay(profile.device, profile.kp, profile.kd, velocity_filter=vf)
 
     def coupling(self, profile: Profile) -> tuple[float, float]:
         """The coupling gains in ``evaluate()`` order: ``(k_c, b_c)`` or ``(m_c, b_c)``."""
@@ -151,3 +154,12 @@ def display_kind(x: DisplayKind | Profile | StabilityResult | str) -> DisplayKin
         return DISPLAY_KINDS[name]
     except KeyError:
         raise ValueError(f"display must be 'impedance' or 'admittance', got {name!r}") from None
+
+
+def profile_filter(profile: Profile) -> VelocityFilter | None:
+    """The profile's velocity filter (its ``controller`` section), ``None`` for the backward
+    difference: every analysis then runs its filter-free code path, bit for bit as before."""
+    sec = profile.controller
+    if sec is None or sec.velocity_filter.is_backward:
+        return None
+    return sec.velocity_filter

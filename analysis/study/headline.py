@@ -55,6 +55,21 @@ class Headline:
                    b_min=result.b_min, apparent_mass=result.apparent_mass, apparent_damping=result.apparent_damping,
                    designs=dict(designs or {}))
 
+    @property
+    def question(self) -> str:
+        """Which question the verdict answers: the two-port test of the virtual coupling
+        (Llewellyn's unconditional stability, eq. 9 or 21), not the wall controller's robustness."""
+        return f"Virtual coupling (Llewellyn, eq. {self.kind.bound_equation})"
+
+    @property
+    def answer(self) -> str:
+        """``"unconditionally stable"`` or ``"not unconditionally stable"``."""
+        return "unconditionally stable" if self.stable else "not unconditionally stable"
+
+    def verdict(self) -> str:
+        """The verdict with its question: ``"Virtual coupling (Llewellyn, eq. 9): not unconditionally stable"``."""
+        return f"{self.question}: {self.answer}"
+
     def value(self, key: str) -> Any:
         """A headline or design value by its key."""
         return self.designs[key] if key in self.designs else getattr(self, key)

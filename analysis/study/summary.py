@@ -107,7 +107,8 @@ def _n(value: Any) -> str:
 def _verdict_lines(d: dict[str, Any], kind: DisplayKind) -> list[str]:
     mu = kind.margin_unit
     return [
-        f"  unconditionally stable (eq. {kind.bound_equation}): {'yes' if d['stable'] else 'NO'}",
+        f"  virtual coupling (Llewellyn, eq. {kind.bound_equation}) unconditionally stable: "
+        f"{'yes' if d['stable'] else 'NO'}",
         f"  stability reserve {_q('stability_reserve', d['stability_reserve'])},"
         f" binding at {_q('binding_frequency', d['binding_frequency'])}",
         f"  worst margin {_q('worst_margin', d['worst_margin'], mu)} at {_q('worst_frequency', d['worst_frequency'])},"
@@ -185,8 +186,10 @@ def format_design(d: dict[str, Any]) -> str:
         g = d["design"]
         lines = [
             "Impedance display: largest coupling stiffness satisfying eq. 9",
-            f"  b_c = {_q('bc', g['bc'])}: k_c <= {_q('kc_max', g['kc_max'])}"
-            f" (binds at {_q('kc_max_frequency', g['frequency'])})",
+            f"  b_c = {_q('bc', g['bc'])}: "
+            + (f"no k_c satisfies eq. 9 (the bound is exceeded at {_q('kc_max_frequency', g['frequency'])})"
+               if g["kc_max"] is None else
+               f"k_c <= {_q('kc_max', g['kc_max'])} (binds at {_q('kc_max_frequency', g['frequency'])})"),
             "",
             "  design chart:      b_c (N s/m)     largest k_c (N/m)   binding (rad/s)",
         ]
@@ -197,8 +200,8 @@ def format_design(d: dict[str, Any]) -> str:
     lines = [
         f"Admittance display (PD k_p = {_q('kp', d['pd']['kp'])}, k_d = {_q('kd', d['pd']['kd'])}):"
         " couplings satisfying eq. 21",
-        f"  m_c = {_q('mc', fd['mc'])}: b_c in "
-        + ("none" if fd["low"] is None else f"[{_n(fd['low'])}, {_n(fd['high'])}] N s/m"),
+        f"  m_c = {_q('mc', fd['mc'])}: "
+        + ("no b_c satisfies eq. 21" if fd["low"] is None else f"b_c in [{_n(fd['low'])}, {_n(fd['high'])}] N s/m"),
         "  smallest m_c: " + ("not found" if mm is None else
                               f"{_q('min_mc', mm['mc'])} with b_c = {_q('min_mc_bc', mm['bc'])}"),
     ]

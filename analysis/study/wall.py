@@ -14,7 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from analysis.errors import ValidationError
 from analysis.profiles.model import Profile
+from analysis.study.quantities import format_number
 from analysis.transparency.design import WallDesign
 from analysis.transparency.observer import (
     CouplingResponse,
@@ -34,7 +36,8 @@ from analysis.transparency.settings import (
 )
 from analysis.twoport.results import Cancelled, Progress
 
-__all__ = ["DEFAULT_BC", "OBSERVER_W", "WallTradeoff", "WallPoint", "WallAdmittances", "wall_settings", "wall_design",
+__all__ = ["DEFAULT_BC", "PAPER_MASS", "mass_scale", "derived_wall_settings", "default_bc", "wall_device_label",
+           "observer_device_label", "OBSERVER_W", "WallTradeoff", "WallPoint", "WallAdmittances", "wall_settings", "wall_design",
            "admittance_grid", "wall_tradeoff", "wall_point", "wall_admittances", "wall_step", "observer_settings",
            "observer_response", "observer_coupling", "observer_step"]
 
@@ -72,9 +75,62 @@ class WallAdmittances:
     nyquist: float
 
 
+#: The handle mass of the paper's example (kg), which the default wall settings are for.
+PAPER_MASS = WallSettings().mass
+
+
+def mass_scale(profile: Profile) -> float:
+    """``s = M / 0.01 kg``: the profile device's total mass over the paper's example handle."""
+    return profile.device.total_mass / PAPER_MASS
+
+
+def derived_wall_settings(profile: Profile) -> WallSettings:
+    """The wall design of a profile without a ``wall`` section: the profile's own device.
+
+    The plant is the device as a rigid body (``m`` = total mass M, ``b`` = total ground damping,
+    ``T`` = its sample period).  The paper's wall (K = 1000 N/m, B = 1 N·s/m), B_c range
+    (0.5 .. 40 N·s/m) and step force (-5 N) are for a 0.01 kg handle; they are scaled by
+    ``s = M / 0.01 kg`` -- M, B, K and B_c all times s keep the closed loop of the paper's
+    example (same poles, same ‖L‖∞ (eq. 16-17), J (eq. 11) times 1/s²), so the robust optimum lies
+    inside the range.  The device *chain* (``plant = "chain"``) is not the default: on a chain with
+    structural modes inside the band (the HBFD's near 900 rad/s) no B_c reaches ‖L‖∞ <= 1.
+    A device whose rigid-body values fall outside the physical ranges gets the paper's example.
+    """
+    base, dev = WallSettings(), profile.device
+    s = mass_scale(profile)
+    try:
+        return base.replace(mass=dev.total_mass, damping=dev.total_ground_damping, sample_time=dev.sample_time,
+                            wall_stiffness=base.wall_stiffness * s, wall_damping=base.wall_damping * s,
+                            bc_min=base.bc_min * s, bc_max=base.bc_max * s, step_force=base.step_force * s)
+    except ValidationError:
+        return base
+
+
 def wall_settings(profile: Profile) -> WallSettings:
-    """The profile's wall section, or the paper's example when it has none."""
-    return profile.wall if profile.wall is not None else WallSettings()
+    """The profile's wall section, or (none) the settings derived from its device
+    (:func:`derived_wall_settings`)."""
+    return profile.wall if profile.wall is not None else derived_wall_settings(profile)
+
+
+def default_bc(profile: Profile) -> float:
+    """The B_c the Transparency tab starts at: the paper's 15 N·s/m, times ``s`` on a derived wall."""
+    st = wall_settings(profile)
+    return DEFAULT_BC if profile.wall is not None or st == WallSettings() else DEFAULT_BC * mass_scale(profile)
+
+
+def wall_device_label(profile: Profile) -> str:
+    """Which device the Transparency tab analyses, in words (shown in the tab)."""
+    st = wall_settings(profile)
+    T = format_number(st.sample_time * 1e3, 4)
+    if profile.wall is not None:
+        plant = (f"the device chain of {profile.name}" if st.plant == "chain"
+                 else f"a rigid handle of m = {format_number(st.mass, 4)} kg, b = {format_number(st.damping, 4)} N·s/m")
+        return f"Device: {plant}, T = {T} ms (from the profile's wall section)"
+    if st == WallSettings():
+        return "Device: the paper's example (0.01 kg handle, T = 1 ms); this device is outside its ranges"
+    return (f"Device: {profile.name} as a rigid body, m = {format_number(st.mass, 4)} kg, "
+            f"b = {format_number(st.damping, 4)} N·s/m, T = {T} ms (the profile has no wall section: "
+            f"the paper's wall and B_c range scaled by m / 0.01 kg = {format_number(mass_scale(profile), 4)})")
 
 
 def wall_design(profile: Profile) -> WallDesign:
@@ -125,8 +181,23 @@ def wall_step(design: WallDesign, bc: float) -> StepResponse:
 
 
 def observer_settings(profile: Profile) -> ObserverSettings:
-    """The profile's observer section, or the defaults when it has none."""
-    return profile.observer if profile.observer is not None else ObserverSettings()
+    """The profile's observer section, or (none) the defaults with the nominal plant ``P_n`` of
+    eq. (3) taken from the profile's device as a rigid body (total mass, total ground damping)."""
+    if profile.observer is not None:
+        return profile.observer
+    dev = profile.device
+    try:
+        return ObserverSettings(nominal_mass=dev.total_mass, nominal_damping=dev.total_ground_damping)
+    except ValidationError:
+        return ObserverSettings()
+
+
+def observer_device_label(profile: Profile) -> str:
+    """Which devices the Observer tab analyses, in words (shown in the tab)."""
+    st = observer_settings(profile)
+    where = "the profile's observer section" if profile.observer is not None else f"{profile.name} as a rigid body"
+    return (f"Single axis: P_n = 1/({format_number(st.nominal_mass, 4)} s + "
+            f"{format_number(st.nominal_damping, 4)}) from {where}; two axes: the five-bar preset '{st.preset}'")
 
 
 def observer_response(profile: Profile) -> ObserverResponse:

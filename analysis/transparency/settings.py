@@ -12,7 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from analysis.checks import Real, SettingsRecord, choice, integer, nonnegative, positive, real
+from analysis.chain.limits import DAMPING, GAIN_STIFFNESS, MASS, SAMPLE_TIME
+from analysis.checks import Real, SettingsRecord, choice, integer, positive, real
 from analysis.errors import ValidationError
 from analysis.transparency.five_bar import FIVE_BAR_PRESETS
 from analysis.transparency.holds import HOLDS
@@ -76,16 +77,16 @@ class WallSettings(SettingsRecord):
 
     def __post_init__(self) -> None:
         s = object.__setattr__
-        s(self, "mass", positive("mass", self.mass, "kg"))
-        s(self, "damping", nonnegative("damping", self.damping, "N s/m"))
-        s(self, "wall_stiffness", nonnegative("wall_stiffness", self.wall_stiffness, "N/m"))
-        s(self, "wall_damping", nonnegative("wall_damping", self.wall_damping, "N s/m"))
+        s(self, "mass", MASS("mass", self.mass))
+        s(self, "damping", DAMPING("damping", self.damping))
+        s(self, "wall_stiffness", GAIN_STIFFNESS("wall_stiffness", self.wall_stiffness))
+        s(self, "wall_damping", DAMPING("wall_damping", self.wall_damping))
         if self.wall_stiffness == 0.0 and self.wall_damping == 0.0:
             raise ValidationError("wall_damping", "> 0 when wall_stiffness = 0 (the wall needs K or B)", 0.0)
         if self.controller_stiffness is not None:
             s(self, "controller_stiffness", real("controller_stiffness", self.controller_stiffness, lo=0.0,
                                                  allowed=">= 0 and finite (N/m) or null for K_c = K"))
-        s(self, "sample_time", positive("sample_time", self.sample_time, "s"))
+        s(self, "sample_time", SAMPLE_TIME("sample_time", self.sample_time))
         choice("hold", self.hold, HOLDS)
         s(self, "lowpass_damping", positive("lowpass_damping", self.lowpass_damping))
         s(self, "weight_order", integer("weight_order", self.weight_order, 0, 8))
@@ -132,8 +133,8 @@ class ObserverSettings(SettingsRecord):
 
     def __post_init__(self) -> None:
         s = object.__setattr__
-        s(self, "nominal_mass", positive("nominal_mass", self.nominal_mass, "kg"))
-        s(self, "nominal_damping", nonnegative("nominal_damping", self.nominal_damping, "N s/m"))
+        s(self, "nominal_mass", MASS("nominal_mass", self.nominal_mass))
+        s(self, "nominal_damping", DAMPING("nominal_damping", self.nominal_damping))
         s(self, "order", integer("order", self.order, 1, 8))
         s(self, "cutoff", positive("cutoff", self.cutoff, "rad/s"))
         s(self, "alpha", _UNIT_INTERVAL_OPEN("alpha", self.alpha))

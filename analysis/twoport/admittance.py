@@ -23,9 +23,10 @@ import numpy as np
 
 from analysis.chain import grids
 from analysis.chain.response import chain_response
+from analysis.chain.velocity_filter import VelocityFilter
 from analysis.chain.discretize import check_frequencies, held_spring_damper, mass_damper_admittance
 from analysis.twoport.display_base import APPARENT_FREQUENCY, DisplayBase, safe_ratio
-from analysis.checks import nonnegative
+from analysis.chain.limits import LIMITS
 from analysis.errors import ValidationError
 from analysis.twoport.results import (
     BoundResult,
@@ -55,23 +56,41 @@ def re_coupling_impedance(w, sample_time: float, mc: float, bc: float) -> np.nda
 
 
 class AdmittanceDisplay(DisplayBase):
-    """Admittance display: device chain + PD position loop + mass-damper coupling."""
+    """Admittance display: device chain + PD position loop + mass-damper coupling.
+
+    ``velocity_filter`` (default ``None``: the backward difference) filters the PD loop's
+    derivative term, ``K_d(z) = k_p T z/(z-1) + k_d H_f(z)`` (eq. 30), so ``G(z)`` and the bound
+    of eq. (21) use the damping the controller really applies.  The coupling ``Y_cA`` (eq. 16)
+    has no velocity estimate and is unchanged.
+    """
 
     display = "admittance"
 
-    def __init__(self, device, kp: float, kd: float):
+    def __init__(self, device, kp: float, kd: float, velocity_filter: VelocityFilter | None = None):
         super().__init__(device)
-        self.kp = nonnegative("kp", kp)
-        self.kd = nonnegative("kd", kd)
+        self.kp = LIMITS["kp"]("kp", kp)  # the physical ranges of analysis.chain.limits
+        self.kd = LIMITS["kd"]("kd", kd)
+        vf = velocity_filter
+        if vf is not None and not isinstance(vf, VelocityFilter):
+            raise ValidationError("velocity_filter", "a VelocityFilter or None", vf)
+        if vf is not None:
+            vf.check(device.sample_time)
+        self.velocity_filter = None if vf is None or vf.is_backward else vf
 
     def modes(self) -> np.ndarray:
         return grids.device_modes(self.device, actuator_stiffness=self.kp)
 
     def _loop(self, w: np.ndarray):
         th = self._theta(w)
-        kprime = held_spring_damper(w, self.device.sample_time, self.kp, self.kd)
-        r = chain_response(self.device, self._s(w), termination=kprime,
-                           re_termination=self.kd * np.cos(th) ** 2, want_x=False)
+        if self.velocity_filter is None:
+            kprime = held_spring_damper(w, self.device.sample_time, self.kp, self.kd)
+            re_k = self.kd * np.cos(th) ** 2
+        else:  # h k_d H_f + h k_p T z/(z-1); the second term is -j (k_p T/2) cot(theta)
+            c, sn = np.cos(th), np.sin(th)
+            kprime = self.kd * c * (c - 1j * sn) * self.velocity_filter.filter_response(w, self.device.sample_time)
+            re_k = kprime.real.copy()
+            kprime = kprime - 0.5j * self.kp * self.device.sample_time * c / sn
+        r = chain_response(self.device, self._s(w), termination=kprime, re_termination=re_k, want_x=False)
         return r, kprime
 
     def _compute(self, w: np.ndarray) -> tuple[BoundResult, TwoPort]:

@@ -39,24 +39,43 @@ from analysis.chain.continued_fraction import (
     terminated_handle_impedance,
 )
 from analysis.chain.response import chain_response
+from analysis.chain.velocity_filter import VelocityFilter
 from analysis.chain.discretize import check_frequencies, spring_damper, theta_of
 from analysis.twoport.display_base import APPARENT_FREQUENCY, DisplayBase, FrequencyGrid, safe_ratio
 from analysis.twoport.results import BoundResult, Cancelled, Progress, StabilityResult, StiffnessChart, StiffnessDesign, TwoPort
 
-__all__ = ["ImpedanceDisplay", "coupling_impedance", "kc_upper"]
+__all__ = ["ImpedanceDisplay", "coupling_impedance", "re_inv_coupling", "kc_upper", "kc_upper_filtered"]
 
 _SAFETY = 1e-9  # relative back-off that keeps reported designs on the safe side
 
 
-def coupling_impedance(w, sample_time: float, kc: float, bc: float) -> np.ndarray:
-    """``Z_c = b_c + k_c T z/(z-1)`` on the unit circle (eq. 4)."""
-    return spring_damper(np.asarray(w, float), sample_time, kc, bc)
+def coupling_impedance(w, sample_time: float, kc: float, bc: float,
+                       velocity_filter: VelocityFilter | None = None) -> np.ndarray:
+    """``Z_c = b_c H_f(z) + k_c T z/(z-1)`` on the unit circle (eq. 4; ``H_f = 1`` by default).
+
+    ``H_f`` is the low-pass of the controller's velocity estimate ``V(z) = H_f(z)(z-1)/(Tz)``
+    (:class:`~analysis.chain.velocity_filter.VelocityFilter`): the damping the controller applies.
+    """
+    w = np.asarray(w, float)
+    if velocity_filter is None or velocity_filter.is_backward:
+        return spring_damper(w, sample_time, kc, bc)
+    th = 0.5 * w * sample_time
+    return bc * velocity_filter.filter_response(w, sample_time) + (0.5 * kc * sample_time) * (1.0 - 1j / np.tan(th))
 
 
-def re_inv_coupling(w, sample_time: float, kc: float, bc: float) -> np.ndarray:
-    """``Re(1/Z_c) = (b_c + k_c T/2) / |Z_c|^2`` (eq. 9, left side), cancellation-free."""
+def re_inv_coupling(w, sample_time: float, kc: float, bc: float,
+                    velocity_filter: VelocityFilter | None = None) -> np.ndarray:
+    """``Re(1/Z_c) = (b_c + k_c T/2) / |Z_c|^2`` (eq. 9, left side), cancellation-free.
+
+    With a filter, ``Re Z_c / |Z_c|^2`` from the direct complex ``Z_c`` (``Re Z_c = b_c Re H_f +
+    k_c T/2`` has no cancellation while ``Re H_f > 0``; the tests compare it with 50-digit values).
+    """
     th = 0.5 * np.asarray(w, float) * sample_time
-    return _re_inv_coupling(np.tan(th), sample_time, kc, bc)
+    if velocity_filter is None or velocity_filter.is_backward:
+        return _re_inv_coupling(np.tan(th), sample_time, kc, bc)
+    z = coupling_impedance(w, sample_time, kc, bc, velocity_filter)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return z.real / (z.real * z.real + z.imag * z.imag)
 
 
 def _re_inv_coupling(tan_th: np.ndarray, sample_time: float, kc: float, bc: float) -> np.ndarray:
@@ -100,14 +119,56 @@ def kc_upper(bound: np.ndarray, w: np.ndarray, sample_time: float, bc: float) ->
     return out
 
 
+def kc_upper_filtered(bound: np.ndarray, w: np.ndarray, sample_time: float, bc: float,
+                      velocity_filter: VelocityFilter) -> np.ndarray:
+    """:func:`kc_upper` for ``Z_c = P + k Q`` with ``P = b_c H_f``, ``Q = T z/(z-1)``.
+
+    ``Re Z >= B |Z|^2`` is ``a2 k^2 + a1 k + a0 <= 0`` with ``a2 = B |Q|^2``,
+    ``a1 = 2 B Re(P conj Q) - T/2``, ``a0 = B |P|^2 - Re P``; for ``B > 0`` the largest root,
+    ``-inf`` where there is none or it is negative; ``+inf`` where ``B <= 0``.
+    """
+    T = sample_time
+    B = np.asarray(bound, float)
+    th = 0.5 * np.asarray(w, float) * T
+    P = bc * velocity_filter.filter_response(w, T)
+    Q = (0.5 * T) * (1.0 - 1j / np.tan(th))
+    out = np.full(B.shape, np.inf)
+    out[(B == np.inf) | np.isnan(B)] = -np.inf
+    pos = (B > 0) & np.isfinite(B)
+    if np.any(pos):
+        Bp, Pp, Qp = B[pos], P[pos], Q[pos]
+        a2 = Bp * (Qp.real ** 2 + Qp.imag ** 2)
+        a1 = 2.0 * Bp * (Pp * np.conj(Qp)).real - 0.5 * T
+        a0 = Bp * (Pp.real ** 2 + Pp.imag ** 2) - Pp.real
+        disc = a1 * a1 - 4.0 * a2 * a0
+        sq = np.sqrt(np.maximum(disc, 0.0))
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            root = np.where(a1 <= 0, (-a1 + sq) / (2.0 * a2), 2.0 * a0 / (-a1 - sq))
+        out[pos] = np.where((disc < 0) | (root < 0), -np.inf, root)
+    return out
+
+
 class ImpedanceDisplay(DisplayBase):
-    """Impedance display of a device chain with a spring-damper virtual coupling."""
+    """Impedance display of a device chain with a spring-damper virtual coupling.
+
+    ``velocity_filter`` (default ``None``: the backward difference of eq. 4) filters the
+    coupling's damping term: ``Z_c = b_c H_f(z) + k_c T z/(z-1)``, so eq. (9), Z_max and the
+    design use the damping the controller really applies.
+    """
 
     display = "impedance"
 
-    def __init__(self, device):
+    def __init__(self, device, velocity_filter: VelocityFilter | None = None):
         super().__init__(device)
         self._apparent: tuple[complex, float] | None = None
+        vf = velocity_filter
+        if vf is not None and not isinstance(vf, VelocityFilter):
+            from analysis.errors import ValidationError
+
+            raise ValidationError("velocity_filter", "a VelocityFilter or None", vf)
+        if vf is not None:
+            vf.check(device.sample_time)
+        self.velocity_filter = None if vf is None or vf.is_backward else vf
 
     def modes(self) -> np.ndarray:
         return grids.device_modes(self.device)
@@ -139,11 +200,11 @@ class ImpedanceDisplay(DisplayBase):
 
     # -- coupling (eq. 4, 9) -------------------------------------------------------------
     def coupling(self, w, kc: float, bc: float) -> np.ndarray:
-        return coupling_impedance(w, self.device.sample_time, kc, bc)
+        return coupling_impedance(w, self.device.sample_time, kc, bc, self.velocity_filter)
 
     def coupling_term(self, w, kc: float, bc: float) -> np.ndarray:
         """``Re(1/Z_c)``, the left side of eq. (9)."""
-        return re_inv_coupling(w, self.device.sample_time, kc, bc)
+        return re_inv_coupling(w, self.device.sample_time, kc, bc, self.velocity_filter)
 
     # -- eq. (11), (12) -----------------------------------------------------------------
     def impedance_range(self, w, kc: float, bc: float) -> tuple[np.ndarray, np.ndarray]:
@@ -166,8 +227,13 @@ class ImpedanceDisplay(DisplayBase):
         # held spring-damper h Z_c = b c^2 - j c (b s + k T / (2 s)) (discretize.held_spring_damper)
         c, sn = fg.cos, fg.sin
         term = np.empty(w.shape, dtype=complex)
-        np.multiply(bc * c, c, out=term.real)
-        np.multiply(-c, bc * sn + 0.5 * kc * self.device.sample_time / sn, out=term.imag)
+        if self.velocity_filter is None:
+            np.multiply(bc * c, c, out=term.real)
+            np.multiply(-c, bc * sn + 0.5 * kc * self.device.sample_time / sn, out=term.imag)
+        else:  # h b_c H_f + h k_c T z/(z-1), the latter -j (k_c T/2) cot(theta)
+            hold = c * (c - 1j * sn)
+            term[:] = bc * hold * self.velocity_filter.filter_response(w, self.device.sample_time)
+            term.imag -= 0.5 * kc * self.device.sample_time * c / sn
         return terminated_handle_impedance(self.device, self._impedances(fg), term)
 
     def apparent_impedance(self) -> complex:
@@ -199,7 +265,10 @@ class ImpedanceDisplay(DisplayBase):
         else:
             w = check_frequencies(w, self.device.sample_time)
             br = self._cached(w, checked=True)[0]
-        term = _re_inv_coupling(self._freq_grid(w).tan, self.device.sample_time, kc, bc)
+        if self.velocity_filter is None:
+            term = _re_inv_coupling(self._freq_grid(w).tan, self.device.sample_time, kc, bc)
+        else:
+            term = self.coupling_term(w, kc, bc)
         margin = term - br.bound
         with np.errstate(divide="ignore", invalid="ignore"):  # exact poles of a lossless chain
             zmin = 1.0 / br.p11
@@ -214,7 +283,10 @@ class ImpedanceDisplay(DisplayBase):
 
         The bound is sampled on the resonance-aware grid, the per-frequency closed-form
         limit :func:`kc_upper` is minimized, and every local minimum is refined; the
-        result is backed off by 1e-9 relative so that it is conservative.
+        result is backed off by 1e-9 relative so that it is conservative.  With a velocity
+        filter the per-frequency limit is :func:`kc_upper_filtered`, and the design is
+        refused (``kc=None``) when the result fails eq. (9) somewhere (the filter's phase lag
+        can make ``Re Z_c < 0``, which bounds k_c from below).
         """
         if not (math.isfinite(bc) and bc >= 0):
             from analysis.errors import ValidationError
@@ -224,11 +296,16 @@ class ImpedanceDisplay(DisplayBase):
         T = self.device.sample_time
         before = self.bound_evaluations
         B = self.bound(w)
-        vals = kc_upper(B, w, T, bc)
+        vf = self.velocity_filter
+
+        def upper(b: np.ndarray, x: np.ndarray) -> np.ndarray:
+            return kc_upper(b, x, T, bc) if vf is None else kc_upper_filtered(b, x, T, bc, vf)
+
+        vals = upper(B, w)
         lo, hi = grids.band_edges(self.device)
 
         def f(x: np.ndarray) -> np.ndarray:
-            return kc_upper(self._uncached_bound(x), x, T, bc)
+            return upper(self._uncached_bound(x), x)
 
         rw, rv = grids.refine_minima(f, w, vals, lo, hi, candidates=8)
         j = int(np.argmin(vals))
@@ -243,6 +320,8 @@ class ImpedanceDisplay(DisplayBase):
         kc = kmin * (1.0 - _SAFETY)
         pts = np.concatenate([w, rw])
         m = self.coupling_term(pts, kc, bc) - np.concatenate([B, self._compute_checked(rw)[0].bound])
+        if vf is not None and float(np.min(m)) < 0:  # a filter's lag can also bound k_c from below
+            return StiffnessDesign(bc=bc, kc=None, frequency=wmin, margin=float(np.min(m)), evaluations=evals)
         return StiffnessDesign(bc=bc, kc=kc, frequency=wmin, margin=float(np.min(m)), evaluations=evals)
 
     def stiffness_chart(self, bc_values, w=None, *, progress: Progress | None = None,

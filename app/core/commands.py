@@ -14,6 +14,7 @@ from PySide6.QtCore import QObject, Signal
 from PySide6.QtGui import QUndoCommand, QUndoStack
 
 from analysis import Device, ValidationError, damping_from_ratio
+from analysis.chain.limits import DAMPING_RATIO
 
 from app.core.model import ProfileModel
 
@@ -139,8 +140,8 @@ class Editor(QObject):
     def edit_damping_ratio(self, index: int, ratio: float, drag: int | None = None) -> str | None:
         """Element damping given by its damping ratio, eq. (28) with the reduced mass."""
         dev = self.model.device
-        if not (np.isfinite(ratio) and ratio >= 0):
-            reason = "refused: must be >= 0 and finite"
+        if not DAMPING_RATIO.contains(ratio):
+            reason = f"refused: must be {DAMPING_RATIO.text}"
             self.refused.emit("dampings", reason)
             return reason
         b = damping_from_ratio(float(dev.stiffnesses[index]), float(dev.masses[index]),

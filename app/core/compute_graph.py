@@ -7,6 +7,13 @@ view *pulls* a node with :meth:`ComputeGraph.get` (synchronous) or :meth:`Comput
 (asynchronous nodes run on the :class:`~app.core.worker.TaskRunner`).  A pull whose key equals the
 cached key returns the cached value, so ``calls`` counts real computations only.
 
+A slider drag (:meth:`ComputeGraph.set_interactive`, fed by the editor's drag tokens) holds back
+the nodes registered with ``live=False`` -- the expensive ones, such as the sampled-data map and
+simulation: while the drag moves, a pull returns their last value and starts nothing (a stale job
+of theirs is dropped).  When the drag pauses for :data:`SETTLE_MS` or ends, the held nodes are
+invalidated again and the next pull runs them on the worker, once.  :meth:`ComputeGraph.waiting`
+names the nodes held back, so that views can say they are catching up.
+
 This module is the scheduler only: the nodes themselves are registered by ``app.core.nodes_*``
 (:func:`app.core.nodes_stability.build_graph` builds the stability graph).  Callers use the public
 methods (:meth:`ComputeGraph.result`, :meth:`ComputeGraph.set_params`, ...), never a node's fields.
@@ -18,20 +25,25 @@ from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
 from typing import Any
 
-from PySide6.QtCore import QObject, Signal, Slot
+from PySide6.QtCore import QObject, QTimer, Signal, Slot
 
 from analysis.profiles.io import Profile
 
 from app.core.model import ALL_FIELDS, ProfileModel
 from app.core.worker import TaskRunner
 
-__all__ = ["Node", "ComputeGraph", "Pull", "Progress", "Cancelled"]
+__all__ = ["Node", "ComputeGraph", "DragPause", "Pull", "Progress", "Cancelled", "SETTLE_MS", "CONFIRM_MS"]
 
 _NOTHING = object()
 
 Pull = Callable[[str], Any]
 Progress = Callable[[int, int], None]
 Cancelled = Callable[[], bool]
+
+#: A drag that has not moved for this long has paused: the held-back nodes catch up (ms).
+SETTLE_MS = 200
+#: ... and for this long more once the GUI is free again (a slow step is not a pause) (ms).
+CONFIRM_MS = 50
 
 
 @dataclass(eq=False)
@@ -40,7 +52,8 @@ class Node:
 
     ``func(profile, pull)`` computes the value (``pull(name)`` gets another node's value);
     asynchronous nodes instead have ``func(profile, params, progress, cancelled)`` and run on the
-    worker with an immutable snapshot of the profile.
+    worker with an immutable snapshot of the profile.  ``live=False`` marks an expensive node that
+    is not recomputed while a slider drag moves (see :meth:`ComputeGraph.set_interactive`).
     """
 
     name: str
@@ -54,6 +67,70 @@ class Node:
     value_key: Any = _NOTHING
     dirty: bool = True
     pending_key: Any = _NOTHING
+    live: bool = True
+    waiting: bool = False  # held back by a moving drag, to be computed when it pauses or ends
+
+
+class DragPause(QObject):
+    """Whether a slider drag is on, and whether it moves or has paused.
+
+    A drag pauses when no edit came for :data:`SETTLE_MS` and then :data:`CONFIRM_MS` more of
+    event loop: an edit whose own work kept the GUI busy past SETTLE_MS is not a pause, the next
+    edit of the drag first gets a moment to arrive.  :attr:`paused` is emitted once per pause.
+    """
+
+    paused = Signal()
+
+    def __init__(self, parent: QObject | None = None) -> None:
+        super().__init__(parent)
+        self.active = False
+        self._paused = False
+        self._settle = QTimer(self)
+        self._settle.setSingleShot(True)
+        self._settle.setInterval(SETTLE_MS)
+        self._confirm = QTimer(self)
+        self._confirm.setSingleShot(True)
+        self._confirm.setInterval(CONFIRM_MS)
+        self._settle.timeout.connect(self._confirm.start)
+        self._confirm.timeout.connect(self._on_confirmed)
+
+    @property
+    def holding(self) -> bool:
+        """A drag is on and moving."""
+        return self.active and not self._paused
+
+    @property
+    def settle_ms(self) -> int:
+        """How long a drag must not move to count as paused (ms; :data:`SETTLE_MS` by default)."""
+        return self._settle.interval()
+
+    @settle_ms.setter
+    def settle_ms(self, ms: int) -> None:
+        self._settle.setInterval(int(ms))
+
+    def set_active(self, on: bool) -> None:
+        self.active, self._paused = on, False
+        if not on:
+            self._settle.stop()
+            self._confirm.stop()
+
+    def moved(self) -> None:
+        """An edit: the drag moves (again)."""
+        if self.active:
+            self._paused = False
+            self._confirm.stop()
+            self._settle.start()
+
+    def held(self) -> None:
+        """A view kept a stale value: the pause counts from here, after the edit's own work."""
+        if self.active and not self._confirm.isActive():
+            self._settle.start()
+
+    @Slot()
+    def _on_confirmed(self) -> None:
+        if self.active:
+            self._paused = True
+            self.paused.emit()
 
 
 class ComputeGraph(QObject):
@@ -71,7 +148,8 @@ class ComputeGraph(QObject):
         self.model = model
         self.runner = runner
         self._nodes: dict[str, Node] = {}
-        self._interactive = False
+        self.drag = DragPause(self)
+        self.drag.paused.connect(self._on_paused)
         model.fieldChanged.connect(self.invalidate)
         model.profileReplaced.connect(self.invalidate_all)
         runner.finished.connect(self._on_finished)
@@ -150,24 +228,58 @@ class ComputeGraph(QObject):
     def stability_name(self) -> str:
         """The stability node views should pull now: the grid-only preview during a slider drag
         (same curves, no refinement of the worst point), the refined result otherwise."""
-        return "stability_preview" if self._interactive and "stability_preview" in self._nodes else "stability"
+        return "stability_preview" if self.drag.active and "stability_preview" in self._nodes else "stability"
 
     @property
     def interactive(self) -> bool:
-        return self._interactive
+        return self.drag.active
+
+    @property
+    def holding(self) -> bool:
+        """Whether the ``live=False`` nodes are held back now (a drag is moving)."""
+        return self.drag.holding
+
+    def waiting(self) -> list[str]:
+        """The nodes held back by the moving drag (their views show a stale value, catching up)."""
+        return [n.name for n in self._nodes.values() if n.waiting]
 
     @Slot(bool)
     def set_interactive(self, on: bool) -> None:
-        """A slider drag started or ended; at the end the refined results are pulled again."""
-        if on == self._interactive:
+        """A slider drag started or ended; at the end the refined results and the nodes held
+        back during the drag are pulled again."""
+        if on == self.drag.active:
             return
-        self._interactive = on
-        if not on and "stability" in self._nodes:
-            self.invalidated.emit({"stability"})
+        self.drag.set_active(on)
+        if on:
+            return
+        if names := self._release() | ({"stability"} if "stability" in self._nodes else set()):
+            self.invalidated.emit(names)
+
+    @Slot()
+    def _on_paused(self) -> None:
+        """The drag paused: compute what it held back (a further move holds them again)."""
+        if names := self._release():
+            self.invalidated.emit(names)
+
+    def _release(self) -> set[str]:
+        held = [n for n in self._nodes.values() if n.waiting]
+        for n in held:
+            n.waiting = False
+        return {n.name for n in held}
+
+    def _hold(self, node: Node, key: Hashable) -> Any:
+        """Keep ``node``'s last value during the drag; a job of it for an older key is dropped."""
+        node.waiting = True
+        self.drag.held()
+        if node.pending_key is not _NOTHING and node.pending_key != key:
+            node.pending_key = _NOTHING
+            self.runner.drop(node.name)
+        return node.value
 
     # -- invalidation --------------------------------------------------------------------------
     @Slot(str)
     def invalidate(self, field_name: str) -> None:
+        self.drag.moved()
         hit = {n.name for n in self._nodes.values() if field_name in n.inputs}
         for name in hit:
             self._nodes[name].dirty = True
@@ -176,6 +288,7 @@ class ComputeGraph(QObject):
 
     @Slot()
     def invalidate_all(self) -> None:
+        self.drag.moved()
         for n in self._nodes.values():
             n.dirty = True
         self.invalidated.emit(set(self._nodes))
@@ -220,7 +333,11 @@ class ComputeGraph(QObject):
         key = node.key(self.model.profile, node.params)
         if key == node.value_key:
             node.dirty = False
+            node.waiting = False
             return node.value
+        if not node.live and self.holding:
+            return self._hold(node, key)
+        node.waiting = False
         if key != node.pending_key or not self.runner.is_running(name):
             node.calls += 1
             node.pending_key = key

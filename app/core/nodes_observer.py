@@ -1,7 +1,8 @@
 """The nodes of the observer tab: the disturbance observer of Eom, Suh & Yi (Fig. 1, eqs. 2-5, 13).
 
 All three are synchronous (< 50 ms together) and call :mod:`analysis.study`.
-``observer_response`` depends on every observer setting; the two-axis nodes only on the preset,
+``observer_response`` depends on every observer setting (derived from the device when the profile has
+no observer section); the two-axis nodes only on the preset,
 the Q order and its cutoff (and the step).
 """
 
@@ -13,11 +14,13 @@ from analysis.profiles.io import Profile
 from analysis.study import OBSERVER_W, observer_coupling, observer_response, observer_settings, observer_step
 
 from app.core.compute_graph import ComputeGraph, Node
+from app.core.model import DEVICE_FIELDS
 
 __all__ = ["OBSERVER_W", "NODES", "observer_settings", "register"]
 
 NODES = ("observer_response", "observer_coupling", "observer_step")
-_INPUTS = frozenset({"observer"})
+#: the observer section, and the device (a profile without the section takes P_n from its device)
+_INPUTS = frozenset({"observer"}) | frozenset(DEVICE_FIELDS)
 
 
 def _two_axis_key(p: Profile, params: dict) -> Hashable:

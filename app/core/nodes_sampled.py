@@ -6,7 +6,11 @@
 * ``sampled_simulation`` -- one run of the nonlinear simulator on the profile's scenario.
 
 All four are asynchronous: they call the study layer (:mod:`analysis.study`) on the worker with
-its progress and cancel hooks, and each call builds its own objects.  The delays, the scenario and
+its progress and cancel hooks, and each call builds its own objects.  They are expensive (0.1 to
+several seconds), so they are registered ``live=False``: a moving slider drag does not start them,
+they catch up when it pauses or ends (:mod:`app.core.compute_graph`).  What follows the drag live
+is ``sampled_point``, the exact spectral radius at the current design on the map's axes
+(:func:`analysis.study.design_radius`, one point of the map, about a millisecond).  The delays, the scenario and
 the simulator options are the profile's ``simulation`` section; the map's axes and ranges are node
 parameters (the display object's map definition by default).
 """
@@ -26,10 +30,12 @@ from analysis.study import (
     EXACT_CHART,
     MAP_POINTS,
     delays,
+    design_radius,
     display_kind,
     exact_chart,
     exact_limit,
     map_arguments,
+    profile_filter,
     simulation,
     simulation_section,
     stability_map,
@@ -38,12 +44,13 @@ from analysis.study import (
 from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress
 from app.core.nodes_stability import DEVICE_INPUTS, GAIN_FIELDS
 
-__all__ = ["MAP_NODE", "EXACT_NODE", "LIMIT_NODE", "SIM_NODE", "ASYNC_NODES", "MAP_AXES", "DEFAULT_RANGES",
+__all__ = ["MAP_NODE", "EXACT_NODE", "LIMIT_NODE", "SIM_NODE", "POINT_NODE", "ASYNC_NODES", "MAP_AXES", "DEFAULT_RANGES",
            "MAP_POINTS", "PARAMETER_LABELS", "EXACT_BC_RANGE", "EXACT_POINTS", "current_section", "delays",
            "map_arguments", "default_map_settings", "exact_grid", "register"]
 
 MAP_NODE, EXACT_NODE, LIMIT_NODE, SIM_NODE = "sampled_map", "sampled_exact_chart", "sampled_limit", "sampled_simulation"
 ASYNC_NODES = (MAP_NODE, EXACT_NODE, LIMIT_NODE, SIM_NODE)
+POINT_NODE = "sampled_point"
 
 #: The map axes offered for each display type (x, y) -- the display objects' map definitions.
 MAP_AXES: dict[str, list[tuple[str, str]]] = {name: list(k.map_axes) for name, k in DISPLAY_KINDS.items()}
@@ -77,7 +84,7 @@ def _pd(p: Profile) -> tuple[float, float] | None:
 
 
 def _map_key(p: Profile, params: dict) -> Hashable:
-    return (p.device.key(), p.display, display_kind(p).coupling(p), (p.kp, p.kd), delays(p),
+    return (p.device.key(), profile_filter(p), p.display, display_kind(p).coupling(p), (p.kp, p.kd), delays(p),
             tuple(sorted((k, v) for k, v in params.items())))
 
 
@@ -91,7 +98,7 @@ def exact_grid(params: dict) -> np.ndarray:
 
 
 def _exact_key(p: Profile, params: dict) -> Hashable:
-    return (p.device.key(), p.display, _pd(p), delays(p), params["bc_range"], params["points"])
+    return (p.device.key(), profile_filter(p), p.display, _pd(p), delays(p), params["bc_range"], params["points"])
 
 
 def _exact_chart(p: Profile, params: dict, progress: Progress, cancelled: Cancelled
@@ -101,7 +108,7 @@ def _exact_chart(p: Profile, params: dict, progress: Progress, cancelled: Cancel
 
 
 def _limit_key(p: Profile, params: dict) -> Hashable:
-    return (p.device.key(), p.display, display_kind(p).coupling(p)[1], _pd(p), delays(p))
+    return (p.device.key(), profile_filter(p), p.display, display_kind(p).coupling(p)[1], _pd(p), delays(p))
 
 
 def _limit(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> float:
@@ -113,19 +120,30 @@ def _limit(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -
 
 
 def _sim_key(p: Profile, params: dict) -> Hashable:
-    return (p.device.key(), p.display, display_kind(p).coupling(p), (p.kp, p.kd), current_section(p))
+    return (p.device.key(), profile_filter(p), p.display, display_kind(p).coupling(p), (p.kp, p.kd),
+            current_section(p))
 
 
 def _simulation(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> SimulationResult | None:
     return simulation(p, progress=progress, cancelled=cancelled)
 
 
+def _point_key(p: Profile, params: dict) -> Hashable:
+    return (p.device.key(), profile_filter(p), p.display, display_kind(p).coupling(p), (p.kp, p.kd), delays(p),
+            params["x"], params["y"])
+
+
 def register(graph: ComputeGraph) -> None:
-    """Add the four sampled-data nodes to ``graph``."""
+    """Add the four sampled-data nodes (held back during a drag) and the live design point to ``graph``."""
     sim_inputs = DEVICE_INPUTS | GAIN_FIELDS | {"simulation"}
-    graph.add(Node(MAP_NODE, sim_inputs, _map_key, _map, asynchronous=True,
+    graph.add(Node(MAP_NODE, sim_inputs, _map_key, _map, asynchronous=True, live=False,
                    params=default_map_settings("impedance")))
     graph.add(Node(EXACT_NODE, DEVICE_INPUTS | {"display", "kp", "kd", "simulation"}, _exact_key, _exact_chart,
-                   asynchronous=True, params={"bc_range": EXACT_BC_RANGE, "points": EXACT_POINTS}))
-    graph.add(Node(LIMIT_NODE, DEVICE_INPUTS | GAIN_FIELDS | {"simulation"}, _limit_key, _limit, asynchronous=True))
-    graph.add(Node(SIM_NODE, sim_inputs, _sim_key, _simulation, asynchronous=True))
+                   asynchronous=True, live=False, params={"bc_range": EXACT_BC_RANGE, "points": EXACT_POINTS}))
+    graph.add(Node(LIMIT_NODE, DEVICE_INPUTS | GAIN_FIELDS | {"simulation"}, _limit_key, _limit, asynchronous=True,
+                   live=False))
+    graph.add(Node(SIM_NODE, sim_inputs, _sim_key, _simulation, asynchronous=True, live=False))
+    axes = {k: v for k, v in default_map_settings("impedance").items() if k in ("x", "y")}
+    graph.add(Node(POINT_NODE, sim_inputs, _point_key,
+                   lambda p, _pull: design_radius(p, *(graph.params(POINT_NODE)[k] for k in ("x", "y"))),
+                   params=axes))

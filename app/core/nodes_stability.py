@@ -13,7 +13,7 @@ from collections.abc import Hashable
 
 from analysis import StabilityResult, StiffnessDesign
 from analysis.profiles.io import Profile
-from analysis.study import DESIGN_CHART, ChartResult, DisplayKind, design_chart, display_kind, min_mass
+from analysis.study import DESIGN_CHART, ChartResult, DisplayKind, design_chart, display_kind, min_mass, profile_filter
 from analysis.twoport import DisplayBase, MassDesign
 
 from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress, Pull
@@ -23,7 +23,9 @@ from app.core.worker import TaskRunner
 __all__ = ["GAIN_FIELDS", "DEVICE_INPUTS", "CHART_PARAMS", "device_node", "build_graph"]
 
 GAIN_FIELDS = frozenset({"display", "kc", "bc", "mc", "bc_adm", "kp", "kd"})
-DEVICE_INPUTS = frozenset(DEVICE_FIELDS)
+#: The device and the controller section (its velocity filter enters every loop with a damping
+#: term; nodes that depend on it have ``profile_filter(p)`` in their keys, the others keep theirs).
+DEVICE_INPUTS = frozenset(DEVICE_FIELDS) | {"controller"}
 #: The design chart's grid (node parameters): b_c range (impedance), m_c range (admittance).
 CHART_PARAMS = {"bc_range": DESIGN_CHART["bc_range"], "mc_range": DESIGN_CHART["mc_range"]}
 
@@ -35,7 +37,8 @@ def device_node(kind: DisplayKind) -> str:
 
 def _device_key(kind: DisplayKind, p: Profile) -> Hashable:
     """What a display object depends on: the device (and the PD loop of the admittance display, eq. 30)."""
-    return (kind.name, p.device.key()) if kind.is_impedance else (kind.name, p.device.key(), p.kp, p.kd)
+    vf = profile_filter(p)
+    return (kind.name, p.device.key(), vf) if kind.is_impedance else (kind.name, p.device.key(), vf, p.kp, p.kd)
 
 
 def _display_node(kind: DisplayKind) -> Node:
@@ -92,9 +95,9 @@ def build_graph(model: ProfileModel, runner: TaskRunner, chart_points: int = DES
         g.add(_display_node(kind))
     g.add(Node("stability", dev | GAIN_FIELDS, _stability_key, _stability))
     g.add(Node("stability_preview", dev | GAIN_FIELDS, _stability_key, _stability_preview))
-    g.add(Node("max_stiffness", dev | {"bc"}, lambda p, _: (p.device.key(), p.bc), _max_stiffness))
+    g.add(Node("max_stiffness", dev | {"bc"}, lambda p, _: (p.device.key(), profile_filter(p), p.bc), _max_stiffness))
     g.add(Node("design_chart", dev | {"display", "kp", "kd"}, _chart_key, _design_chart, asynchronous=True,
                params={**CHART_PARAMS, "points": chart_points}))
-    g.add(Node("min_mass", dev | {"kp", "kd"}, lambda p, _: (p.device.key(), p.kp, p.kd), _min_mass,
+    g.add(Node("min_mass", dev | {"kp", "kd"}, lambda p, _: (p.device.key(), profile_filter(p), p.kp, p.kd), _min_mass,
                asynchronous=True))
     return g

@@ -88,6 +88,14 @@ class Settings(QObject):
     def set_log_y(self, on: bool) -> None:
         self._s.setValue("plots/stability_log_y", "true" if on else "false")
 
+    def stability_view(self) -> str:
+        """The stability plot's view mode ("ratio", "values" or "log"); "ratio" unless chosen."""
+        value = str(self._s.value("plots/stability_view", ""))
+        return value or ("log" if self.log_y() else "ratio")
+
+    def set_stability_view(self, mode: str) -> None:
+        self._s.setValue("plots/stability_view", mode)
+
 
 def resolve_dark(theme: str) -> bool:
     """Whether ``theme`` means dark colours now (``system`` follows QStyleHints.colorScheme())."""

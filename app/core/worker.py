@@ -17,6 +17,8 @@ from typing import Any
 from app import qt_compat  # noqa: F401 - before any Qt call (PySide6 6.12 on Python 3.11)
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, Signal, Slot
 
+from analysis.errors import ValidationError
+
 __all__ = ["TaskRunner", "Job"]
 
 Job = Callable[[Callable[[int, int], None], Callable[[], bool]], Any]
@@ -111,6 +113,12 @@ class _Runnable(QRunnable):
         try:
             with self._gil:
                 result = self._fn(progress, lambda: self._priority.checkpoint(self._stop))
+        except ValidationError as exc:  # an input beyond its range or a work limit: the message says which
+            self._relay.error.emit(name, gen, str(exc))
+            return
+        except MemoryError as exc:  # never a raw MemoryError (or a traceback) for the user
+            self._relay.error.emit(name, gen, f"not enough memory ({exc}): use fewer points or a shorter duration")
+            return
         except Exception as exc:  # noqa: BLE001 - reported to the GUI, never lost
             traceback.print_exc()
             self._relay.error.emit(name, gen, f"{type(exc).__name__}: {exc}")
@@ -163,11 +171,19 @@ class TaskRunner(QObject):
 
     def cancel(self, name: str) -> None:
         """Stop the job ``name`` (its result, if any, is dropped)."""
-        stop = self._stops.pop(name, None)
-        if stop is not None:
-            stop.set()
-            self._generation[name] = self._generation.get(name, 0) + 1
+        if self.drop(name):
             self.cancelled.emit(name)
+
+    def drop(self, name: str) -> bool:
+        """Stop the job ``name`` and throw its result away, without reporting :attr:`cancelled`
+        (its inputs changed: the scheduler submits it again when it is wanted).  Returns whether
+        a job was running."""
+        stop = self._stops.pop(name, None)
+        if stop is None:
+            return False
+        stop.set()
+        self._generation[name] = self._generation.get(name, 0) + 1
+        return True
 
     def cancel_all(self) -> None:
         for name in list(self._stops):

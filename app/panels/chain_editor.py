@@ -18,9 +18,10 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from app.widgets.colors import ERROR_STYLE
 from app.core.commands import Editor
 from app.core.model import ProfileModel
-from app.widgets.log_slider_field import LogSliderField
+from app.widgets.log_slider_field import LogSliderField, with_range
 
 __all__ = ["ChainEditor"]
 
@@ -62,7 +63,7 @@ class ChainEditor(QWidget):
         self.sensor.setToolTip("Element carrying the force gauge (eq. 27)")
         sensor.addWidget(self.sensor, 1)
         self.sensor_error = QLabel()
-        self.sensor_error.setStyleSheet("color: #d0312d; font-size: 11px;")
+        self.sensor_error.setStyleSheet(ERROR_STYLE + " font-size: 11px;")
         self.sensor_error.hide()
 
         self.rows = QVBoxLayout()
@@ -97,6 +98,7 @@ class ChainEditor(QWidget):
                tip: str, ratio: bool = False) -> LogSliderField:
         name, i = key
         model, ed = self._model, self._editor
+        tip = with_range(tip, name)
         if ratio:
             f = LogSliderField(model, ("dampings", "masses", "stiffnesses", *_DEV),
                                lambda m: float(m.device.damping_ratios[i]),

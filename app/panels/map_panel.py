@@ -13,6 +13,7 @@ from typing import Any
 from PySide6.QtCore import Signal, Slot
 from PySide6.QtWidgets import QComboBox, QFormLayout, QGroupBox, QHBoxLayout, QLabel, QSpinBox, QWidget
 
+from app.widgets.colors import ERROR_STYLE
 from app.core.nodes_sampled import DEFAULT_RANGES, MAP_AXES, PARAMETER_LABELS, default_map_settings
 from app.widgets.sci_spin_box import SciSpinBox
 
@@ -40,7 +41,7 @@ class MapPanel(QGroupBox):
         self.points.setToolTip("Grid points per axis (the map costs points² eigenvalue problems)")
         self.points.valueChanged.connect(self._on_points)
         self.error = QLabel("")
-        self.error.setStyleSheet("color: #c92a2a;")
+        self.error.setStyleSheet(ERROR_STYLE)
         self.error.hide()
         form = QFormLayout(self)
         form.addRow("Axes (x × y)", self.axes_box)

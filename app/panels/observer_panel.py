@@ -6,9 +6,10 @@ the section (its defaults while the profile has none) and edits it through one u
 
 from __future__ import annotations
 
-from PySide6.QtWidgets import QGridLayout, QGroupBox, QWidget
+from PySide6.QtWidgets import QComboBox, QGridLayout, QGroupBox, QWidget
 
-from analysis.transparency.observer import PRESETS, ObserverSettings
+from analysis.study import observer_settings
+from analysis.transparency.observer import PRESETS
 
 from app.core.commands import Editor
 from app.core.model import ProfileModel
@@ -19,8 +20,8 @@ from app.widgets.section_binding import SectionBinding
 
 __all__ = ["ObserverPanel", "PRESET_LABELS"]
 
-PRESET_LABELS = {"five_bar_centre": "five-bar, workspace centre (unequal distal links)",
-                 "five_bar_offset": "five-bar, handle 60 mm right of centre"}
+PRESET_LABELS = {"five_bar_centre": "five-bar, centre (unequal distal links)",
+                 "five_bar_offset": "five-bar, 60 mm right of centre"}
 
 
 class ObserverPanel(QGroupBox):
@@ -29,7 +30,7 @@ class ObserverPanel(QGroupBox):
     def __init__(self, model: ProfileModel, editor: Editor, parent: QWidget | None = None) -> None:
         super().__init__("Disturbance observer (Eom, Suh && Yi, Fig. 1, eq. 3–5)", parent)
         self.setToolTip("Stored in the profile's observer section")
-        self.section = sec = SectionBinding(model, editor, "observer", ObserverSettings, "observer")
+        self.section = sec = SectionBinding(model, editor, "observer", observer_settings, "observer")
         self.fields: dict[str, QWidget] = {}
         order = IntField(model, ("observer",), sec.reader("order"), sec.writer("order", "order"), "Q order r", 1, 8,
                          "Q = (ω_Q/(s + ω_Q))^r, binomial low-pass (r ≥ 1 so that Q/P_n is proper)")
@@ -37,6 +38,8 @@ class ObserverPanel(QGroupBox):
                              "Two-axis device", [(p, PRESET_LABELS.get(p, p)) for p in PRESETS],
                              "Cartesian inertia and damping of a five-bar linkage (eq. 2)")
         self.fields["order"], self.fields["preset"] = order, preset
+        preset.combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToContents)
+        preset.combo.setMinimumWidth(preset.combo.sizeHint().width())  # its text is never cut
         rows = [
             [order, self._slider("cutoff", "ω<sub>Q</sub>", "rad/s", 1.0, 1e5, "Cutoff of the Q filter"),
              self._slider("nominal_mass", "M̄", "kg", 1e-4, 10.0, "Nominal mass of P_n = 1/(M̄ s + B̄) (eq. 3)")],

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from PySide6.QtCore import Qt, Slot
-from PySide6.QtGui import QAction
+from PySide6.QtGui import QAction, QFont
 from PySide6.QtWidgets import QGroupBox, QLabel, QScrollArea, QToolButton, QVBoxLayout, QWidget
 
 from analysis.study import display_kind
@@ -11,8 +11,9 @@ from analysis.study import display_kind
 from app.core.commands import Editor
 from app.core.model import ProfileModel
 from app.panels.chain_editor import ChainEditor
+from app.panels.filter_panel import FilterPanel
 from app.widgets.display_selector import DisplaySelector
-from app.widgets.log_slider_field import LogSliderField
+from app.widgets.log_slider_field import LogSliderField, with_range
 
 __all__ = ["ParameterPanel"]
 
@@ -35,7 +36,10 @@ class ParameterPanel(QScrollArea):
         field = self._field
         self.title = QLabel()
         self.title.setWordWrap(True)
-        self.title.setStyleSheet("font-size: 14px; font-weight: 600;")
+        font = self.title.font()  # a font, not a style sheet: a style sheet keeps the palette's old text colour
+        font.setPixelSize(14)
+        font.setWeight(QFont.Weight.DemiBold)
+        self.title.setFont(font)
         lay.addWidget(self.title)
         lay.addWidget(self._coupling_box(maximize_kc, minimize_mc))
 
@@ -44,6 +48,8 @@ class ParameterPanel(QScrollArea):
         gp.addWidget(field("kp", "k<sub>p</sub>", "N/m", 10.0, 1e7, True, "Proportional gain of the position loop"))
         gp.addWidget(field("kd", "k<sub>d</sub>", "N·s/m", 1e-2, 1e5, True, "Derivative gain of the position loop"))
         lay.addWidget(self.pd_box)
+        self.filter_panel = FilterPanel(model, editor)  # the controller's velocity estimate (issue 15)
+        lay.addWidget(self.filter_panel)
 
         box = QGroupBox("Sampling and analysis band")
         gs = QVBoxLayout(box)
@@ -69,7 +75,7 @@ class ParameterPanel(QScrollArea):
         """A slider field bound to the model field ``name`` (edits through the editor, one undo step)."""
         ed = self._editor
         f = LogSliderField(self._model, (name,), lambda m: float(m.get(name)), lambda v, d: ed.edit(name, v, d),
-                           ed, label, unit, lo, hi, allow_zero=zero, tooltip=tip)
+                           ed, label, unit, lo, hi, allow_zero=zero, tooltip=with_range(tip, name))
         f.setObjectName(name)
         self.fields[name] = f
         return f

@@ -28,9 +28,11 @@ from PySide6.QtWidgets import (
 
 from analysis import ValidationError
 from analysis.profiles.sections import SimulationSection
+from analysis.study import scenario_matches
 from analysis.sampled import CLAMPED, FIRM_GRASP, HANDS_OFF, RIGID_GRASP, SCENARIOS, SimulationOptions, hbfd_options
 from analysis.sampled import scenario as preset
 
+from app.widgets.colors import ERROR_STYLE
 from app.core.commands import Editor, describe_error
 from app.core.model import ProfileModel
 from app.core.nodes_sampled import current_section
@@ -100,6 +102,34 @@ class _Field(QLineEdit):
         self.setMaximumWidth(110)
 
 
+class PassivityControls(QGroupBox):
+    """The passivity observer and controller of Hannaford & Ryu (IEEE T-RO 18(1), 2002), issue 15:
+    two check boxes and the PC damping cap (``max_damping``, a field of the panel)."""
+
+    def __init__(self, edit_options: Callable[..., str | None], max_damping: QLineEdit) -> None:
+        super().__init__("Passivity control (Hannaford & Ryu, simulation only)")
+        self.max_damping = max_damping
+        self.po = QCheckBox("passivity observer (energy into the virtual environment)")
+        self.po.setToolTip("Records the energy flowing into the virtual environment port from the sampled "
+                           "force and velocity (simulation only)")
+        self.po.toggled.connect(lambda on: edit_options("passivity observer", passivity_observer=bool(on)))
+        self.pc = QCheckBox("passivity controller (variable damping)")
+        self.pc.setToolTip("Adds the damping that removes the observed energy excess (impedance causality, "
+                           "Hannaford & Ryu); implies the observer")
+        self.pc.toggled.connect(lambda on: edit_options("passivity controller", passivity_control=bool(on)))
+        form = QFormLayout(self)
+        form.addRow(self.po)
+        form.addRow(self.pc)
+        form.addRow("Max PC damping [N·s/m]", max_damping)
+
+    def sync(self, o: SimulationOptions) -> None:
+        """Show ``o``'s passivity options (the caller blocks the edits)."""
+        self.po.setChecked(o.passivity_observer or o.passivity_control)
+        self.po.setEnabled(not o.passivity_control)  # the controller needs the observer
+        self.pc.setChecked(o.passivity_control)
+        self.max_damping.setEnabled(o.passivity_control)
+
+
 class SimulationPanel(QWidget):
     def __init__(self, model: ProfileModel, editor: Editor, parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -107,12 +137,15 @@ class SimulationPanel(QWidget):
         self._syncing = False
         self.error = QLabel("")
         self.error.setWordWrap(True)
-        self.error.setStyleSheet("color: #c92a2a;")
+        self.error.setStyleSheet(ERROR_STYLE)
         self.error.hide()
         self.fields: dict[str, _Field] = {}
         lay = QVBoxLayout(self)
         lay.setContentsMargins(0, 0, 0, 0)
-        for box in (self._loop_box(), self._scenario_box(), self._effects_box()):
+        self.passivity = PassivityControls(self._edit_options, self._option_field("passivity_max_damping", (
+            "Cap of the PC damping (0 = uncapped, as in Hannaford & Ryu)")))
+        self.po, self.pc = self.passivity.po, self.passivity.pc
+        for box in (self._loop_box(), self._scenario_box(), self._effects_box(), self.passivity):
             lay.addWidget(box)
         lay.addWidget(self.error)
         model.fieldChanged.connect(self._on_field)
@@ -234,6 +267,12 @@ class SimulationPanel(QWidget):
             self.impl.setChecked(o.implementation_delay)
             i = self.preset.findData(sc.name if sc.name in SCENARIOS and SCENARIOS[sc.name] == sc else "custom")
             self.preset.setCurrentIndex(i)
+            profile = self.model.profile
+            for j in range(self.preset.count()):  # the other display's worst case is not offered
+                name = self.preset.itemData(j)
+                item = self.preset.model().item(j)
+                if name in SCENARIOS and item is not None:
+                    item.setEnabled(scenario_matches(profile, SCENARIOS[name]))
             self.causality.setCurrentIndex(self.causality.findData(sc.causality))
             self.wall.setChecked(sc.wall)
             g = next((k for k, v in GRASPS.items() if v == sc.grasp), None)
@@ -249,6 +288,7 @@ class SimulationPanel(QWidget):
                 f.setText(_fmt(getattr(obj, attr)))
             self.friction.setText(", ".join(f"{x:g}" for x in o.friction))
             self.substeps.setValue(o.substeps)
+            self.passivity.sync(o)
             for attr in ("wall_stiffness", "wall_position"):
                 self.fields[attr].setEnabled(sc.wall)
         finally:

@@ -11,13 +11,13 @@ from __future__ import annotations
 import math
 
 from PySide6.QtCore import Qt, Signal, Slot
-from PySide6.QtWidgets import QGridLayout, QGroupBox, QPushButton, QWidget
+from PySide6.QtWidgets import QComboBox, QGridLayout, QGroupBox, QPushButton, QWidget
 
-from analysis.transparency.settings import WallSettings
+from analysis.study import default_bc, wall_settings
 
 from app.core.commands import Editor
 from app.core.model import ProfileModel
-from app.core.nodes_wall import DEFAULT_BC, HOLD_LABELS, PLANT_LABELS
+from app.core.nodes_wall import HOLD_LABELS, PLANT_LABELS
 from app.widgets.choice_field import ChoiceField
 from app.widgets.int_field import IntField
 from app.widgets.log_slider_field import LogSliderField
@@ -36,8 +36,9 @@ class WallPanel(QGroupBox):
     def __init__(self, model: ProfileModel, editor: Editor, parent: QWidget | None = None) -> None:
         super().__init__("Wall controller (Eom, Suh && Yi, eq. 7–17)", parent)
         self.setToolTip("Stored in the profile's wall section (B_c is a design variable of this tab)")
-        self.bc = DEFAULT_BC
-        self.section = SectionBinding(model, editor, "wall", WallSettings, "wall")
+        self.bc = default_bc(model.profile)  # 15 N·s/m (the paper's), scaled on a wall derived from the device
+        self._model = model
+        self.section = SectionBinding(model, editor, "wall", wall_settings, "wall")
         self.fields: dict[str, QWidget] = {}
         g = QGridLayout(self)
         g.setContentsMargins(6, 4, 6, 4)
@@ -61,7 +62,7 @@ class WallPanel(QGroupBox):
         for c in range(3):
             g.setColumnStretch(c, 1)
         model.fieldChanged.connect(self._on_field)
-        model.profileReplaced.connect(self.update_enabled)
+        model.profileReplaced.connect(self._on_replaced)
         self.update_enabled()
 
     def _rows(self, model: ProfileModel) -> list[list[QWidget]]:
@@ -76,6 +77,9 @@ class WallPanel(QGroupBox):
         order = IntField(model, ("wall",), sec.reader("weight_order"), sec.writer("weight_order", "weight order"),
                          "Weight order r", 0, 8, "w₁ = (ω_c/(s + ω_c))^r in eq. (11); r = 0 makes J infinite")
         self.fields.update(plant=plant, hold=hold, weight_order=order)
+        for choice in (plant, hold):  # the chosen option's text is never cut
+            choice.combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToContents)
+            choice.combo.setMinimumWidth(choice.combo.sizeHint().width())
         return [
             [plant, s("mass", "m", "kg", 1e-4, 10.0, "Handle mass (eq. 7)"),
              s("damping", "b", "N·s/m", 1e-4, 10.0, "Handle damping (eq. 7)", zero=True)],
@@ -96,6 +100,12 @@ class WallPanel(QGroupBox):
     def _on_field(self, field: str) -> None:
         if field == "wall":
             self.update_enabled()
+
+    @Slot()
+    def _on_replaced(self) -> None:
+        """A new profile: its own starting B_c (another device may need a B_c decades away)."""
+        self.update_enabled()
+        self.set_bc(default_bc(self._model.profile))
 
     @Slot()
     def update_enabled(self) -> None:

@@ -17,6 +17,9 @@ from typing import Any
 import numpy as np
 
 from analysis.profiles.io import Profile
+from analysis.study import citations
+from app.report.identify_section import identification_sections
+from app.report.zwidth_section import zwidth_sections
 from analysis.study import (
     HEADLINE_KEYS,
     Headline,
@@ -111,10 +114,7 @@ METHODS = (
     "<i>B</i><sub>c</sub>. Where a profile has a <i>simulation</i> section, the exact sampled loop (ZOH, "
     "optional delay) gives the spectral-radius stability map (&rho; &lt; 1 is stable) and the nonlinear "
     "time-domain scenario.",
-    "References: R. J. Adams, M. R. Moreyra and B. Hannaford, &ldquo;Stability and Performance of Haptic "
-    "Displays: Theory and Experiments&rdquo;, Proc. ASME IMECE Haptics Symposium, 1998. K.-S. Eom, I. H. Suh "
-    "and B.-J. Yi, &ldquo;A Design Method of Haptic Interface Controller Considering Transparency and "
-    "Robust Stability&rdquo;, Proc. IEEE/RSJ IROS, 2000.",
+    f"References: {citations.ADAMS.html()} {citations.EOM.html()}",
 )
 
 
@@ -260,10 +260,10 @@ def _controller(profile: Profile, numbers: dict) -> Section:
 
 def _verdict(h: Headline, profile: Profile, numbers: dict) -> Section:
     dev = profile.device
-    verdict_text = "<b>Unconditionally stable</b>" if h.stable else "<b>NOT unconditionally stable</b>"
+    verdict_text = f"<b>{h.question}: {'unconditionally stable' if h.stable else 'NOT unconditionally stable'}</b>"
     rows = _headline_rows(h, numbers, _VERDICT_ROWS, HEADLINE_KEYS)
     return Section("Verdict", (
-        f"{verdict_text} (eq. {h.kind.bound_equation}) for every passive operator and environment, over the band "
+        f"{verdict_text} for every passive operator and environment, over the band "
         f"[{num(dev.band_min)}, {num(dev.nyquist)}) rad/s.",), rows)
 
 
@@ -298,6 +298,8 @@ def gather(profile: Profile, *, source: str | None = None, sampled: bool = True,
     for sec in (_wall(profile, res, numbers), _sampled(profile, res, numbers) if sampled else None):
         if sec is not None:
             sections.append(sec)
+    sections += identification_sections(profile, res, numbers)  # issue 14: only with the section
+    sections += zwidth_sections(profile, res, numbers)  # issue 15: only with the controller section
     return ReportContent(
         title=f"Haptic interface design report: {html.escape(profile.name)}",
         profile=profile,

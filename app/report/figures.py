@@ -29,6 +29,8 @@ from app.views.range_plot import RangePlot
 from app.views.stability_map import StabilityMapView
 from app.views.stability_plot import StabilityPlot
 from app.report.content import ReportContent, num
+from app.report.identify_section import FIGURE_KEYS as IDENTIFY_FIGURES, identify_figure
+from app.report.zwidth_section import FIGURE_KEYS as ZWIDTH_FIGURES, zwidth_figure
 
 __all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "CurvesPlot"]
 
@@ -124,7 +126,7 @@ def _prepare(view: PlotView, size: tuple[int, int] = FIG_SIZE) -> PlotView:
     view.resize(*size)
     view.show()
     QApplication.processEvents()
-    view.legend.anchor(itemPos=(1, 0), parentPos=(1, 0), offset=(-10, 10))  # re-anchor at the final size
+    view.place_legend()  # at the final size: off the data where the view knows how (top right otherwise)
     QApplication.processEvents()
     return view
 
@@ -235,7 +237,8 @@ def _scenario(content: ReportContent, key: str) -> Figure | None:
 
 
 _BUILDERS = {"bound": _bound, "range": _range, "chart": _chart, "tradeoff_j": _tradeoff, "tradeoff_l": _tradeoff,
-             "step": _step, "map": _map, "scenario_position": _scenario, "scenario_force": _scenario}
+             "step": _step, "map": _map, "scenario_position": _scenario, "scenario_force": _scenario,
+             **{k: identify_figure for k in IDENTIFY_FIGURES}, **{k: zwidth_figure for k in ZWIDTH_FIGURES}}
 
 
 def make_view(content: ReportContent, key: str) -> Figure | None:
@@ -253,7 +256,7 @@ def make_view(content: ReportContent, key: str) -> Figure | None:
 
 
 FIGURE_KEYS = ("bound", "range", "chart", "tradeoff_j", "tradeoff_l", "step", "map", "scenario_position",
-               "scenario_force")
+               "scenario_force", *IDENTIFY_FIGURES, *ZWIDTH_FIGURES)
 
 
 def build_figures(content: ReportContent) -> list[Figure]:

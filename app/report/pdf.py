@@ -17,6 +17,8 @@ from app import qt_compat  # noqa: F401 - before any Qt call
 from PySide6.QtCore import QMarginsF, QRectF, QSizeF, Qt
 from PySide6.QtGui import QColor, QFont, QPageLayout, QPageSize, QPainter, QPdfWriter, QPen, QTextDocument
 
+from analysis.profiles.files import unwritable_reason
+
 from app.report.content import ReportContent
 from app.report.figures import Figure
 
@@ -189,6 +191,9 @@ def write_pdf(content: ReportContent, figures: list[Figure], path: str | os.Path
     """Write the PDF report; returns the page count."""
     if page_size not in PAGE_SIZES:
         raise ValueError(f"page size must be one of {', '.join(PAGE_SIZES)}, got {page_size!r}")
+    reason = unwritable_reason(path)
+    if reason is not None:  # before Qt's writer, which only says "QPainter::begin(): Returned false"
+        raise OSError(reason)
     tmp = os.fspath(path) + ".part"
     writer = QPdfWriter(tmp)
     writer.setResolution(DPI)
@@ -201,7 +206,7 @@ def write_pdf(content: ReportContent, figures: list[Figure], path: str | os.Path
     pages = _paginate(_blocks(content, figures, width, writer), page.height() - MARGIN_TOP - MARGIN_BOTTOM)
     painter = QPainter()
     if not painter.begin(writer):
-        raise OSError(f"cannot write {path}")
+        raise OSError(unwritable_reason(path) or "the PDF writer cannot open the file")
     try:
         for n, blist in enumerate(pages, 1):
             if n > 1:

@@ -40,6 +40,7 @@ class AnalysisTab(QWidget):
         self.ctx = ctx
         self.stale = True
         self.refreshes = 0
+        self.dark = False  # the theme, for the rich texts a tab writes (app.views.base.for_theme)
 
     @classmethod
     def register_nodes(cls, graph: ComputeGraph) -> None:
@@ -53,5 +54,11 @@ class AnalysisTab(QWidget):
         return []
 
     def apply_theme(self, dark: bool) -> None:
+        changed = dark != self.dark
+        self.dark = dark
         for v in self.plot_views():
             v.apply_theme(dark)
+        if changed:  # the tab's texts are written again in the theme's colours
+            self.stale = True
+            if self.isVisible():
+                self.refresh()

@@ -8,6 +8,7 @@ from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
 from analysis.study import display_kind
 
 from app.views.base import PlotView
+from app.widgets.colors import CURSOR_COLORS
 from app.views.design_chart import DesignChart
 from app.tabs.base import AnalysisTab, AppContext
 
@@ -23,10 +24,10 @@ class DesignTab(AnalysisTab):
         super().__init__(ctx, parent)
         self.chart = DesignChart()
         self._shown: object = None
-        hint = QLabel("Click the chart to set the coupling gains (one undo step).  The chart is conservative: "
+        self.hint = hint = QLabel("Click the chart to set the coupling gains (one undo step).  The chart is conservative: "
                       "every point in the shaded region satisfies the two-port bound over the analysis band.")
         hint.setWordWrap(True)
-        hint.setStyleSheet("color: palette(mid);")
+        hint.setStyleSheet(f"color: {CURSOR_COLORS[0]};")  # muted, still 4.5:1 on the window colour
         lay = QVBoxLayout(self)
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addWidget(self.chart, 1)
@@ -72,6 +73,10 @@ class DesignTab(AnalysisTab):
 
     def plot_views(self) -> list[PlotView]:
         return [self.chart]
+
+    def apply_theme(self, dark: bool) -> None:
+        super().apply_theme(dark)
+        self.hint.setStyleSheet(f"color: {CURSOR_COLORS[1 if dark else 0]};")
 
 
 TAB = DesignTab

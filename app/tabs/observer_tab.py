@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QGridLayout, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QGridLayout, QLabel, QVBoxLayout, QWidget
+
+from analysis.study import observer_device_label
 
 from app.core import nodes_observer
 from app.core.compute_graph import ComputeGraph
@@ -45,9 +47,15 @@ class ObserverTab(AnalysisTab):
         grid.addWidget(self.disturbance_plot, 0, 1)
         grid.addWidget(self.coupling_plot, 1, 0)
         grid.addWidget(self.step_plot, 1, 1)
+        for view in (self.plant_plot, self.disturbance_plot, self.coupling_plot, self.step_plot):
+            view.legend_outside()  # below the plot: inside, it covers the curves
         lay = QVBoxLayout(self)
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addWidget(self.panel)
+        self.device_label = QLabel()  # which devices the tab analyses (the profile's, or its section's)
+        self.device_label.setObjectName("observerDevice")
+        self.device_label.setWordWrap(True)
+        lay.addWidget(self.device_label)
         lay.addLayout(grid, 1)
 
     def _build_plots(self) -> None:
@@ -85,6 +93,7 @@ class ObserverTab(AnalysisTab):
     def refresh(self) -> None:
         graph = self.ctx.graph
         st = observer_settings(self.ctx.model.profile)
+        self.device_label.setText(observer_device_label(self.ctx.model.profile))
         r = graph.get("observer_response")
         c = graph.get("observer_coupling")
         s = graph.get("observer_step")

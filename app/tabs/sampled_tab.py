@@ -19,7 +19,7 @@ from collections.abc import Hashable
 from typing import Any
 
 from PySide6.QtCore import Qt, Slot
-from PySide6.QtWidgets import QHBoxLayout, QLabel, QScrollArea, QSplitter, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QLabel, QScrollArea, QSplitter, QToolButton, QVBoxLayout, QWidget
 
 from analysis.profiles.io import Profile
 from analysis.sampled import StabilityMap
@@ -34,6 +34,7 @@ from app.core.nodes_sampled import (
     LIMIT_NODE,
     MAP_AXES,
     MAP_NODE,
+    POINT_NODE,
     SIM_NODE,
     current_section,
     delays,
@@ -43,6 +44,7 @@ from app.core.nodes_sampled import (
 from app.panels.map_panel import MapPanel
 from app.panels.simulation_panel import SimulationPanel
 from app.views.base import PlotView
+from app.widgets.colors import for_theme
 from app.views.exact_limit_chart import ExactLimitChart
 from app.views.sampled_summary import design_on_map, exact_summary, map_subtitle, scenario_note
 from app.views.stability_map import StabilityMapView
@@ -71,7 +73,7 @@ def _column(*widgets: QWidget) -> QWidget:
 class SampledTab(AnalysisTab):
     title = "Sampled-data"
     order = 30
-    nodes = frozenset({*ASYNC_NODES, "design_chart", "stability", "max_stiffness"})
+    nodes = frozenset({*ASYNC_NODES, POINT_NODE, "design_chart", "stability", "max_stiffness"})
 
     @classmethod
     def register_nodes(cls, graph: ComputeGraph) -> None:
@@ -83,6 +85,7 @@ class SampledTab(AnalysisTab):
         super().__init__(ctx, parent)
         self._held: dict[str, Hashable] = {}  # node -> key not to restart (cancelled or failed)
         self._errors: dict[str, str] = {}
+        self._drawn: dict[str, tuple] = {}  # view -> the results it shows (redrawn only when they change)
         self.map_view = StabilityMapView()
         self.exact_view = ExactLimitChart()
         self.time_view = TimeResponse()
@@ -95,10 +98,26 @@ class SampledTab(AnalysisTab):
         self.panel = SimulationPanel(ctx.model, ctx.editor)
         self.map_panel = MapPanel(ctx.model.profile.display)
         self.map_panel.changed.connect(self._on_map_changed)
-        lay = QHBoxLayout(self)
-        lay.setContentsMargins(4, 4, 4, 4)
-        lay.addWidget(self._controls())
-        lay.addWidget(self._views(), 1)
+        self.controls = self._controls()
+        self.settings_button = QToolButton()
+        self.settings_button.setCheckable(True)
+        self.settings_button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextBesideIcon)
+        self.settings_button.setArrowType(Qt.ArrowType.RightArrow)
+        self.settings_button.setText("Loop, scenario and map settings")
+        self.settings_button.setToolTip("Show or hide the delays, the simulated scenario and the map's axes "
+                                        "(hidden, the plots get the width)")
+        self.settings_button.toggled.connect(self.show_controls)
+        self.split = QSplitter(Qt.Orientation.Horizontal)
+        self.split.addWidget(self.controls)
+        self.split.addWidget(self._views())
+        self.split.setStretchFactor(1, 1)
+        self.split.setChildrenCollapsible(False)
+        self.controls.hide()
+        lay = QVBoxLayout(self)
+        lay.setContentsMargins(4, 2, 4, 4)
+        lay.setSpacing(2)
+        lay.addWidget(self.settings_button, 0, Qt.AlignmentFlag.AlignLeft)
+        lay.addWidget(self.split, 1)
         ctx.graph.ready.connect(self._on_ready)
         ctx.graph.cancelled.connect(self._on_cancelled)
         ctx.graph.failed.connect(self._on_failed)
@@ -118,6 +137,14 @@ class SampledTab(AnalysisTab):
         scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         return scroll
 
+    @Slot(bool)
+    def show_controls(self, show: bool) -> None:
+        """Show or collapse the settings panel (collapsed, the plots take the tab's whole width)."""
+        self.controls.setVisible(show)
+        if self.settings_button.isChecked() != show:
+            self.settings_button.setChecked(show)
+        self.settings_button.setArrowType(Qt.ArrowType.LeftArrow if show else Qt.ArrowType.RightArrow)
+
     def _views(self) -> QWidget:
         top = QSplitter(Qt.Orientation.Horizontal)
         top.addWidget(_column(self.map_view, self.progress[MAP_NODE]))
@@ -127,7 +154,7 @@ class SampledTab(AnalysisTab):
         split.addWidget(top)
         split.addWidget(_column(self.summary, self.time_view, self.progress[SIM_NODE]))
         split.setChildrenCollapsible(False)
-        split.setSizes([1, 1])
+        split.setSizes([45, 55])  # the text and the three time plots below need a little more
         return split
 
     # -- map settings (view state, not the profile) --------------------------------------------------
@@ -164,40 +191,63 @@ class SampledTab(AnalysisTab):
     def _busy(self, name: str) -> bool:
         return not self.ctx.graph.is_fresh(name) and name not in self._held
 
+    def _busy_text(self, name: str) -> str:
+        """"updating…" while computing; while a slider drag holds it back, that it catches up."""
+        return "updating after the drag…" if name in self.ctx.graph.waiting() else ""
+
     def refresh(self) -> None:
         g, p = self.ctx.graph, self.ctx.model.profile
         self.map_panel.show_display(p.display)
-        g.set_params(MAP_NODE, **self.map_panel.settings(p.display))
+        settings = self.map_panel.settings(p.display)
+        g.set_params(MAP_NODE, **settings)
+        g.set_params(POINT_NODE, x=settings["x"], y=settings["y"])
         m, chart, limit, sim = (self._pull(name) for name in ASYNC_NODES)
-        bound_chart = g.request("design_chart")
+        # the two-port chart behind the exact limit: not restarted on every step of a drag
+        bound_chart = g.result("design_chart") if g.holding else g.request("design_chart")
         self._draw_map(p, m)
         self._draw_exact(p, chart, bound_chart)
         bound = g.get("max_stiffness").kc if display_kind(p).is_impedance else None
-        self.summary.setText(exact_summary(p, limit if g.is_fresh(LIMIT_NODE) else None, bound, *delays(p)))
+        self.summary.setText(for_theme(exact_summary(p, limit if g.is_fresh(LIMIT_NODE) else None, bound,
+                                                     *delays(p)), self.dark))
         self._draw_simulation(sim)
         self.refreshes += 1
         self.stale = False
 
+    def _changed(self, view: str, *shown: object) -> bool:
+        """Whether ``view`` must be redrawn: it shows other result objects (or other texts) than
+        ``shown``.  A refresh during a slider drag then repaints only what moved."""
+        old = self._drawn.get(view)
+        if old is not None and len(old) == len(shown) and all(
+                a is b or (isinstance(a, str) and a == b) for a, b in zip(old, shown)):
+            return False
+        self._drawn[view] = shown
+        return True
+
     def _draw_map(self, p: Profile, m: StabilityMap | None) -> None:
         if m is not None and m.x_name == self.map_panel.settings(p.display)["x"]:
-            self.map_view.update_map(m, map_subtitle(p, m, *delays(p)))
+            subtitle = map_subtitle(p, m, *delays(p))
+            if self._changed("map", m, subtitle):
+                self.map_view.update_map(m, subtitle)
             px, py = design_on_map(p, m)
-            inside = (m.x[0] <= px <= m.x[-1]) and py is not None and (m.y[0] <= py <= m.y[-1])
-            rho = self.map_view.value_at(px, py) if inside else math.nan
-            self.map_view.update_point(px, py, None if math.isnan(rho) else rho <= 1 + 1e-12)
-        elif m is not None:
+            rho = self.ctx.graph.get(POINT_NODE)  # exact at the current gains, live during a drag
+            self.map_view.update_point(px, py, None if rho is None or math.isnan(rho) else rho <= 1 + 1e-12)
+        elif m is not None and self._changed("map", None):
             self.map_view.update_map(None)
-        self.map_view.set_busy(self._busy(MAP_NODE))
+        self.map_view.set_busy(self._busy(MAP_NODE), self._busy_text(MAP_NODE))
         if MAP_NODE in self._errors:
             self.map_view.set_warning([self._errors[MAP_NODE]])
 
     def _draw_exact(self, p: Profile, chart: Any, bound: Any) -> None:
         g = self.ctx.graph
         kind = display_kind(p)
-        self.exact_view.update_bound(bound if bound is not None and display_kind(bound) is kind else None)
-        self.exact_view.update_exact(chart if isinstance(chart, kind.exact_chart_type) else None, kind)
-        self.exact_view.update_point(*kind.chart_point(p), g.get("stability").stable)
-        self.exact_view.set_busy(self._busy(EXACT_NODE) or not g.is_fresh("design_chart"))
+        bound = bound if bound is not None and display_kind(bound) is kind else None
+        if self._changed("bound", bound):
+            self.exact_view.update_bound(bound)
+        chart = chart if isinstance(chart, kind.exact_chart_type) else None
+        if self._changed("exact", chart, kind):
+            self.exact_view.update_exact(chart, kind)
+        self.exact_view.update_point(*kind.chart_point(p), g.get(g.stability_name).stable)
+        self.exact_view.set_busy(self._busy(EXACT_NODE) or not g.is_fresh("design_chart"), self._busy_text(EXACT_NODE))
         if EXACT_NODE in self._errors:
             self.exact_view.set_warning([self._errors[EXACT_NODE]])
 
@@ -205,11 +255,14 @@ class SampledTab(AnalysisTab):
         sec = current_section(self.ctx.model.profile)
         if sim is not None:
             sc = sec.scenario
-            note = scenario_note(sec, self.ctx.graph.is_fresh(SIM_NODE))
-            self.time_view.update_result(sim, sc.wall_position if sc.wall else None, note)
+            note = scenario_note(sec, self.ctx.graph.is_fresh(SIM_NODE), self.ctx.model.profile.display)
+            wall = sc.wall_position if sc.wall else None
+            if self._changed("simulation", sim, str(wall), note):
+                self.time_view.update_result(sim, wall, note)
         if SIM_NODE in self._errors:
-            self.time_view.verdict.setText(f"<span style='color:#c92a2a'>{self._errors[SIM_NODE]}</span>")
-        self.time_view.set_busy(self._busy(SIM_NODE))
+            self.time_view.verdict.setText(for_theme(f"<span style='color:#c92a2a'>{self._errors[SIM_NODE]}</span>",
+                                                     self.dark))
+        self.time_view.set_busy(self._busy(SIM_NODE), self._busy_text(SIM_NODE))
 
     # -- worker reports -------------------------------------------------------------------------------
     @Slot(str)

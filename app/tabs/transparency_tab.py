@@ -20,6 +20,7 @@ import numpy as np
 from PySide6.QtCore import Qt, QTimer, Slot
 from PySide6.QtWidgets import QFrame, QGridLayout, QLabel, QSizePolicy, QVBoxLayout, QWidget
 
+from analysis.study import wall_device_label
 from analysis.transparency.settings import StepResponse, WallSettings
 
 from app.core import nodes_wall
@@ -38,6 +39,7 @@ from app.core.nodes_wall import (
 )
 from app.panels.wall_panel import WallPanel
 from app.views.base import PlotView, fmt
+from app.widgets.colors import for_theme
 from app.views.curves_plot import CurvesPlot
 from app.views.wall_summary import inf_spans, wall_summary
 from app.widgets.task_progress import TASK_TITLES
@@ -77,6 +79,8 @@ class TransparencyTab(AnalysisTab):
         for i, w in enumerate((self.index_plot, self.peak_plot, self.admittance_plot,
                                self.position_plot, self.force_plot, self.summary)):
             grid.addWidget(w, i // 3, i % 3)
+            if isinstance(w, PlotView):
+                w.legend_outside()  # six small plots: a legend inside would cover their curves
         for i in range(3):
             grid.setColumnStretch(i, 1)
         lay = QVBoxLayout(self)
@@ -173,7 +177,8 @@ class TransparencyTab(AnalysisTab):
         self._draw_point(point, trade if fresh else None)
         self._draw_admittance(adm)
         self._draw_step(step, st)
-        self.summary.setText(wall_summary(st, point, trade if fresh else None))
+        self.summary.setText(for_theme(wall_summary(st, point, trade if fresh else None,
+                                                    wall_device_label(self.ctx.model.profile)), self.dark))
         self.refreshes += 1
         self.stale = False
 

@@ -12,6 +12,11 @@ from PySide6.QtCore import QPointF, QRectF, Qt, Signal, Slot
 from PySide6.QtGui import QAction, QColor, QFont, QPainter
 from PySide6.QtWidgets import QGraphicsItem, QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
+from analysis.study.quantities import format_number
+
+from app.widgets.colors import CURSOR_COLORS, WARNING_COLORS
+from app.views.legend_row import LegendRow
+
 __all__ = ["PlotView", "Series", "clean_xy", "fmt", "PALETTE", "mark_design_point", "rich_label"]
 
 PALETTE = {
@@ -44,12 +49,7 @@ def fmt(x: float, digits: int = 4) -> str:
         return "–"
     if math.isinf(x):
         return "∞" if x > 0 else "−∞"
-    text = f"{x:.{digits}g}"
-    if "e" in text:
-        mant, exp = text.split("e")
-        text = f"{mant}×10^{int(exp)}"
-        text = text.replace("^", "<sup>", 1) + "</sup>"
-    return text.replace("-", "−")
+    return format_number(x, digits, rich=True)  # the one rule: 1.171×10<sup>5</sup>, a true minus
 
 
 def plain(x: float, digits: int = 4) -> str:
@@ -115,6 +115,25 @@ def mark_design_point(item: pg.PlotDataItem, x: float, y: float, stable: bool | 
     return note
 
 
+def header_row(title: str) -> tuple[QHBoxLayout, QLabel, QLabel]:
+    """A plot's title (wrapped in a narrow window: never cut, never widening it) and its crosshair
+    readout, in one row."""
+    header = QLabel(f"<b>{title}</b>")
+    header.setMinimumWidth(40)
+    header.setWordWrap(True)
+    header.setToolTip(title)
+    cursor_label = QLabel("")
+    cursor_label.setAlignment(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
+    cursor_label.setMinimumWidth(120)
+    cursor_label.setStyleSheet(f"color: {CURSOR_COLORS[0]}; font-family: monospace;")
+    head = QHBoxLayout()
+    head.setContentsMargins(4, 0, 4, 0)
+    head.addWidget(header, 1)
+    head.addStretch(0)  # (kept: subclasses set the row's stretches by index: title, spacer, readout)
+    head.addWidget(cursor_label)
+    return head, header, cursor_label
+
+
 class PlotView(QWidget):
     """A titled pyqtgraph plot with a crosshair readout and a warning line.
 
@@ -133,17 +152,12 @@ class PlotView(QWidget):
         self.title = title
         self.revision = 0  # bumps on every data update (tests, benchmarks)
         self._dark = False
+        self.legend_row: LegendRow | None = None  # set when the legend is moved below the plot
         self._log_x = self._log_y = False
-        self.header = QLabel(f"<b>{title}</b>")
-        self.header.setMinimumWidth(40)  # a long title is cut in a narrow window, it does not widen it
-        self.header.setToolTip(title)
-        self.cursor_label = QLabel("")
-        self.cursor_label.setAlignment(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
-        self.cursor_label.setMinimumWidth(120)
-        self.cursor_label.setStyleSheet("color: palette(mid); font-family: monospace;")
+        head, self.header, self.cursor_label = header_row(title)
         self.warning = QLabel("")
         self.warning.setWordWrap(True)
-        self.warning.setStyleSheet("color: #c77c02;")
+        self.warning.setStyleSheet(f"color: {WARNING_COLORS[0]};")
         self.warning.hide()
         self.plot_widget = pg.PlotWidget(axisItems={"bottom": LogAxis("bottom"), "left": LogAxis("left")})
         self.plot_widget.setMinimumSize(200, 160)
@@ -158,12 +172,10 @@ class PlotView(QWidget):
             axis.enableAutoSIPrefix(False)
             axis.setTickFont(QFont(self.font().family(), 9))
         self.legend = self.plot.addLegend(offset=(-10, 10), labelTextSize="9pt")
+        # one "Export" in the right-click menu: ours (below), not pyqtgraph's scene exporter dialog
+        self.plot_widget.scene().contextMenu = []
+        self.empty_message = ""  # said in the plot (see app.views.placement) and in every export
 
-        head = QHBoxLayout()
-        head.setContentsMargins(4, 0, 4, 0)
-        head.addWidget(self.header)
-        head.addStretch(1)
-        head.addWidget(self.cursor_label)
         lay = QVBoxLayout(self)
         lay.setContentsMargins(0, 0, 0, 0)
         lay.setSpacing(2)
@@ -218,9 +230,14 @@ class PlotView(QWidget):
                 and self.plot.getAxis("left").labelText:
             return  # relabelling re-lays out the plot: only when it changed
         self.x_name, self.x_unit, self.y_name, self.y_unit = x_name, x_unit, y_name, y_unit
-        style = {"font-size": "10pt"}
-        self.plot.setLabel("bottom", f"{x_name}  [{x_unit}]", **style)
-        self.plot.setLabel("left", f"{y_name}  [{y_unit}]", **style)
+        self._label_axes()
+
+    def _label_axes(self) -> None:
+        """The axis titles in the theme's text colour (pyqtgraph's setLabel forgets the text pen's),
+        symbols with subscripts like the legends' (:func:`rich_label`: ``k_c`` -> k<sub>c</sub>)."""
+        style = {"font-size": "10pt", "color": self.palette_colors()["fg"]}
+        self.plot.setLabel("bottom", f"{rich_label(self.x_name)}  [{self.x_unit}]", **style)
+        self.plot.setLabel("left", f"{rich_label(self.y_name)}  [{self.y_unit}]", **style)
 
     def curve(self, name: str | None, color: str, width: float = 2.0, style: Qt.PenStyle = Qt.PenStyle.SolidLine
               ) -> pg.PlotDataItem:
@@ -228,6 +245,30 @@ class PlotView(QWidget):
         item.setClipToView(True)
         item.setDownsampling(auto=True, method="peak")
         return item
+
+    def legend_outside(self, columns: int = 3) -> None:
+        """Move the legend out of the data area into a row below the x axis (small plots; see
+        :mod:`app.views.legend_row`)."""
+        placer = getattr(self, "legend_placer", None)
+        if placer is not None:  # a legend in the layout is not moved around the view box
+            placer.deleteLater()
+            self.legend_placer = None
+        self.legend_row = LegendRow(self.plot, self.legend, self.plot_widget.width, self.fit_scene, columns, self)
+        self.legend = self.legend_row.legend
+
+    def fit_scene(self) -> None:
+        """Lay the plot out in the widget again after its minimum size shrank.
+
+        pyqtgraph sizes its scene to the widget only when the widget resizes; a scene once wider
+        (a longer title, a wider legend) would stay wider and be cut on the right.
+        """
+        pw = self.plot_widget
+        pw.centralWidget.setGeometry(QRectF(pw.range))
+
+    def resizeEvent(self, event: object) -> None:  # noqa: N802 - Qt API
+        super().resizeEvent(event)
+        if self.legend_row is not None:
+            self.legend_row.fit()
 
     def set_legend_text(self, item: pg.GraphicsObject, text: str) -> None:
         label = self.legend.getLabel(item)
@@ -289,15 +330,22 @@ class PlotView(QWidget):
     def apply_theme(self, dark: bool) -> None:
         self._dark = dark
         pal = PALETTE["dark" if dark else "light"]
+        self.warning.setStyleSheet(f"color: {WARNING_COLORS[1 if dark else 0]};")
+        self.cursor_label.setStyleSheet(f"color: {CURSOR_COLORS[1 if dark else 0]}; font-family: monospace;")
         self.plot_widget.setBackground(pal["bg"])
         for ax in ("left", "bottom", "top", "right"):
             axis = self.plot.getAxis(ax)
             axis.setPen(pg.mkPen(pal["fg"]))
             axis.setTextPen(pg.mkPen(pal["fg"]))
+        if self.plot.getAxis("left").labelText:
+            self._label_axes()
+        if self.plot.titleLabel.isVisible():
+            self.plot.titleLabel.setText(self.plot.titleLabel.text, color=pal["fg"])
         self.legend.setLabelTextColor(QColor(pal["fg"]))
-        self.legend.setBrush(pg.mkBrush(QColor(pal["bg"]).red(), QColor(pal["bg"]).green(),
-                                        QColor(pal["bg"]).blue(), 210))
-        self.legend.setPen(pg.mkPen(pal["muted"]))
+        if self.legend_row is None:
+            self.legend.setBrush(pg.mkBrush(QColor(pal["bg"]).red(), QColor(pal["bg"]).green(),
+                                            QColor(pal["bg"]).blue(), 210))
+            self.legend.setPen(pg.mkPen(pal["muted"]))
         for _sample, label in self.legend.items:
             label.setText(label.text, color=pal["fg"])
         self.restyle(pal)
@@ -308,6 +356,18 @@ class PlotView(QWidget):
     def restyle(self, pal: dict) -> None:
         """Recolour the subclass's items."""
 
+    def place_legend(self) -> None:
+        """Put the legend where it covers no data (views with a LegendPlacer); top right by default."""
+        placer = getattr(self, "legend_placer", None)
+        if placer is not None:
+            placer.place()
+        else:
+            self.legend.anchor(itemPos=(1, 0), parentPos=(1, 0), offset=(-10, 10))
+
     # -- export -----------------------------------------------------------------------------------------
     def export_series(self) -> list[Series]:
         raise NotImplementedError
+
+    def export_notes(self) -> list[str]:
+        """Notes an export carries with the data (e.g. why a chart is empty); CSV comment lines."""
+        return [self.empty_message] if self.empty_message else []

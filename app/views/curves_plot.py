@@ -37,6 +37,9 @@ class CurvesPlot(PlotView):
         for label in (self.header, self.cursor_label):
             label.setMinimumWidth(0)
             label.setSizePolicy(QSizePolicy.Policy.Ignored, QSizePolicy.Policy.Preferred)
+        policy = self.header.sizePolicy()
+        policy.setHeightForWidth(True)  # the title wraps (PlotView): its height follows its width
+        self.header.setSizePolicy(policy)
         head = self.layout().itemAt(0).layout()
         head.setStretch(0, 5)  # the title gets most of the row, the readout the rest
         head.setStretch(1, 0)

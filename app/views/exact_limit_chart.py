@@ -18,6 +18,7 @@ from analysis.sampled import CriticalChart, CriticalMassChart
 
 from analysis.study import IMPEDANCE, ChartResult, DisplayKind, display_kind
 from app.views.base import PlotView, Series, clean_xy, mark_design_point, plain
+from app.views.placement import CenterMessage, LegendPlacer
 
 __all__ = ["ExactLimitChart"]
 
@@ -38,7 +39,9 @@ class ExactLimitChart(PlotView):
                                      symbolPen=pg.mkPen("w", width=1.5), name="current gains")
         self.point.setZValue(20)
         self.plot.addItem(self.point)
-        self.legend.setOffset((-10, -10))  # bottom right, below the curves
+        self.legend_placer = LegendPlacer(self)  # where it covers neither curve nor the current gains
+        self.message = CenterMessage(self)
+        self._point_xy: tuple[float, float] | None = None
         self.chart: CriticalChart | CriticalMassChart | None = None
         self._bound_series: list[Series] = []
         self._exact_series: list[Series] = []
@@ -85,6 +88,7 @@ class ExactLimitChart(PlotView):
             self._bound_series = [Series("two-port b_c high", "m_c (kg)", "b_c (N s/m)", xh, yh),
                                   Series("two-port b_c low", "m_c (kg)", "b_c (N s/m)", xl, yl)]
         self._notes["bound"] = notes
+        self._update_empty()
         self._refresh_warning()
         self.bump()
 
@@ -121,12 +125,23 @@ class ExactLimitChart(PlotView):
                                          "b_c (N s/m)", x, y)]
         self.legend.getLabel(self.bound).setText(self.kind.chart_note)
         self._notes["exact"] = notes
+        self._update_empty()
         self.header.setText(f"<b>{self.title}</b>")
         self._refresh_warning()
         self.bump()
 
+    def _update_empty(self) -> None:
+        """An empty chart says so in the plot (and in exports) once the exact limit is known."""
+        empty = (self.chart is not None and not any(len(s.x) for s in self._bound_series)
+                 and not any(len(s.x) for s in self._exact_series))
+        self.empty_message = (f"Nothing to show: neither the two-port bound nor the exact sampled limit has a "
+                              f"stable {self.kind.exact_y.symbol} in this b_c range." if empty else "")
+        self.message.set_text(self.empty_message, self.palette_colors()["fg"])
+
     def update_point(self, x: float, y: float, stable: bool | None) -> None:
         self._point_note = mark_design_point(self.point, x, y, stable, self.palette_colors())
+        drawn = x > 0 and y > 0 and np.isfinite(x) and np.isfinite(y)
+        self._point_xy = (float(x), float(y)) if drawn else None
         self._refresh_warning()
         self.bump()
 
@@ -139,11 +154,12 @@ class ExactLimitChart(PlotView):
         self.exact.setPen(pg.mkPen(pal["b"], width=2.5))
         self.exact.setSymbolBrush(pal["b"])
         self.point.setSymbolPen(pg.mkPen(pal["bg"], width=1.5))
+        self.message.set_text(self.empty_message, pal["fg"])
 
     def export_series(self) -> list[Series]:
         rows = [*self._bound_series, *self._exact_series]
-        pts = self.point.getData()
-        if pts[0] is not None and len(pts[0]):
+        if self._point_xy is not None:  # the gains themselves, not the log10 the plot draws
             xl, yl = self.kind.chart_x.axis_label(), self.kind.chart_y.axis_label()
-            rows.append(Series("current gains", xl, yl, np.asarray(pts[0]), np.asarray(pts[1])))
+            rows.append(Series("current gains", xl, yl, np.array([self._point_xy[0]]),
+                               np.array([self._point_xy[1]])))
         return rows

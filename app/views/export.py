@@ -2,7 +2,9 @@
 
 PNG and SVG render the plot's scene with QPainter, so the output size is what was asked for,
 independent of the screen's device pixel ratio (HiDPI-correct).  The CSV has one x and one y
-column per curve (named with units), padded with empty cells where curves differ in length.
+column per curve (named with units), padded with empty cells where curves differ in length;
+every number in the unit its header names (never the log10 a log axis draws), and nothing the
+view leaves off-scale is dropped.  A view's notes (an empty result) come first as ``# note:`` lines.
 """
 
 from __future__ import annotations
@@ -108,6 +110,8 @@ def csv_text(view: PlotView) -> str:
     """The plotted data as CSV text: a header row with units, then x/y columns per curve."""
     series = view.export_series()
     out = io.StringIO()
+    for note in view.export_notes():  # e.g. why a chart is empty: "# note: ..." before the header
+        out.write("# note: " + " ".join(note.split()) + "\n")
     w = csv.writer(out, lineterminator="\n")
     header: list[str] = []
     for s in series:

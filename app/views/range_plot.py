@@ -1,6 +1,15 @@
-"""Impedance range: |Z_min| and |Z_max| against ω, log-log, the band between them shaded (Fig. 6)."""
+"""Impedance range: |Z_min| and |Z_max| against ω, log-log, the band between them shaded (Fig. 6).
+
+The default view shows the data of interest: just below the Nyquist frequency the range
+(eqs. 11-12, 23-24) shoots up by many decades (|Z_min| ~ 10¹¹ N·s/m for the HBFD), and in the
+admittance display b_min can be ~10⁻⁷ N·s/m.  Those parts are still drawn (and exported), but
+the auto-range (each curve's ``dataBounds`` in y) covers the data of interest only, and a label
+says where the curves go.
+"""
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pyqtgraph as pg
@@ -12,8 +21,31 @@ from analysis import StabilityResult
 from analysis.study import display_kind
 
 from app.views.base import PlotView, Series, clean_xy, plain, rich_label
+from app.views.placement import LegendPlacer
 
-__all__ = ["RangePlot"]
+__all__ = ["RangePlot", "interest_mask", "TAIL_FRACTION", "TAIL_JUMP", "BMIN_DECADES"]
+
+#: the last part of the band (fraction of its top frequency) that may leave the default view ...
+TAIL_FRACTION = 0.98
+#: ... when it rises above this multiple of everything else
+TAIL_JUMP = 10.0
+#: a b_min asymptote further below the data than this many decades is drawn off-scale
+BMIN_DECADES = 1.5
+
+
+def interest_mask(w: np.ndarray, *curves: np.ndarray) -> np.ndarray:
+    """The frequencies of interest: all, unless the top of the band blows up (just below Nyquist)."""
+    w = np.asarray(w, float)
+    tail = w > TAIL_FRACTION * w[-1] if w.size else np.zeros(0, bool)
+    if not np.any(tail) or np.all(tail):
+        return np.ones(w.size, bool)
+    ys = np.vstack([np.abs(np.asarray(c)).astype(float) for c in curves])
+    with np.errstate(invalid="ignore"):
+        head = np.nanmax(np.where(np.isfinite(ys[:, ~tail]), ys[:, ~tail], np.nan))
+        top = np.nanmax(np.where(np.isfinite(ys[:, tail]), ys[:, tail], np.nan))
+    if not (np.isfinite(head) and np.isfinite(top)) or top <= TAIL_JUMP * head:
+        return np.ones(w.size, bool)
+    return ~tail
 
 
 class RangePlot(PlotView):
@@ -32,13 +64,57 @@ class RangePlot(PlotView):
         self.plot.addItem(self.fill, ignoreBounds=True)
         self.kmax_curve = self.curve("k<sub>max</sub>/ω", "#868e96", width=1.2, style=Qt.PenStyle.DashLine)
         self.bmin_curve = self.curve("b<sub>min</sub>", "#868e96", width=1.2, style=Qt.PenStyle.DotLine)
+        for item in (self.zmin_curve, self.zmax_curve, self.kmax_curve, self.bmin_curve):
+            item.dataBounds = self._bounds_of(item)  # the auto-range sees the data of interest only
+        self.off_scale = pg.TextItem("", color="#c92a2a", anchor=(1, 0))
+        self.off_scale.setParentItem(self.plot.getViewBox())
+        self.off_scale.setZValue(60)
+        self.below_scale = pg.TextItem("", color="#868e96", anchor=(1, 1))
+        self.below_scale.setParentItem(self.plot.getViewBox())
+        self.below_scale.setZValue(60)
+        self.plot.getViewBox().sigResized.connect(lambda *_: self._place_notes())
+        self.legend_placer = LegendPlacer(self, areas=self.band_area, rects=self._note_rects)
+        self.default_y: tuple[float, float] | None = None  # data range of interest (N·s/m), for tests
         self._series: list[Series] = []
+
+    def _bounds_of(self, item: pg.PlotDataItem):  # noqa: ANN202 - replaces a pyqtgraph method
+        own = item.dataBounds
+
+        def bounds(ax: int, frac: float = 1.0, orthoRange: tuple[float, float] | None = None):  # noqa: N803
+            x, _y = item.getData()
+            if ax == 1 and self.default_y is not None and x is not None and len(x) \
+                    and all(np.isfinite(self.default_y)):
+                return math.log10(self.default_y[0]), math.log10(self.default_y[1])
+            return own(ax, frac=frac, orthoRange=orthoRange)
+
+        return bounds
+
+    def band_area(self) -> np.ndarray:
+        """Sample points (view coordinates) of the shaded band between |Z_min| and |Z_max|, for the legend."""
+        x1, y1 = self.zmin_curve.getData()
+        x2, y2 = self.zmax_curve.getData()
+        if x1 is None or x2 is None or len(x1) < 2 or len(x2) < 2:
+            return np.empty((0, 2))
+        xs = np.linspace(max(x1[0], x2[0]), min(x1[-1], x2[-1]), 64)
+        a, b = np.interp(xs, x1, y1), np.interp(xs, x2, y2)
+        f = np.linspace(0.0, 1.0, 16)
+        return np.column_stack([np.repeat(xs, f.size), (a[:, None] + (b - a)[:, None] * f[None, :]).ravel()])
+
+    def _place_notes(self) -> None:
+        r = self.plot.getViewBox().boundingRect()
+        self.off_scale.setPos(r.right() - 6, r.top() + 2)
+        self.below_scale.setPos(r.right() - 6, r.bottom() - 2)
+
+    def _note_rects(self) -> list:
+        return [t.sceneBoundingRect() for t in (self.off_scale, self.below_scale) if t.textItem.toPlainText()]
 
     def update_result(self, res: StabilityResult) -> None:
         w = res.w
         label_min, label_max = display_kind(res).range_labels()
         x1, y1, h1 = clean_xy(w, np.abs(res.zmin), True, True)
         x2, y2, h2 = clean_xy(w, np.abs(res.zmax), True, True)
+        keep = interest_mask(w, res.zmin, res.zmax)
+        self.default_y = self._interest_range(w, res, keep)
         self.zmin_curve.setData(x1, y1)
         self.zmax_curve.setData(x2, y2)
         self._update_fill(x1, y1, x2, y2)
@@ -56,16 +132,42 @@ class RangePlot(PlotView):
             self._series.append(Series("k_max/omega", "omega (rad/s)", "k_max/omega (N s/m)", xk, yk))
         else:
             self.kmax_curve.setData([], [])
-        self.set_legend_text(self.kmax_curve, f"k<sub>max</sub>/ω, k<sub>max</sub> = {plain(km)} N/m")
+        self.set_legend_text(self.kmax_curve, f"k<sub>max</sub>/ω ({plain(km)} N/m)")
+        lo, hi = self.default_y
+        below = bool(np.isfinite(bm) and bm > 0 and np.isfinite(lo)
+                     and math.log10(lo) - math.log10(bm) > BMIN_DECADES)
         if np.isfinite(bm) and bm > 0:
+            if not below and np.isfinite(lo):
+                self.default_y = (min(lo, bm), hi)
             self.bmin_curve.setData([w[0], w[-1]], [bm, bm])
             self._series.append(Series("b_min", "omega (rad/s)", "b_min (N s/m)",
                                        np.array([w[0], w[-1]]), np.array([bm, bm])))
         else:
             self.bmin_curve.setData([], [])
-        self.set_legend_text(self.bmin_curve, f"b<sub>min</sub> = {plain(bm)} N·s/m")
+        self.set_legend_text(self.bmin_curve, f"b<sub>min</sub> ({plain(bm)} N·s/m)" + (", below" if below else ""))
+        self.below_scale.setText(f"↓ b_min = {plain(bm)} N·s/m lies below the axis" if below else "")
+        self._off_scale_text(w, res, keep)
+        self._place_notes()
         self.set_warning(notes)
         self.bump()
+
+    def _interest_range(self, w: np.ndarray, res: StabilityResult, keep: np.ndarray) -> tuple[float, float]:
+        """Smallest and largest value the default view shows (the curves of interest and k_max/ω)."""
+        vals = [np.abs(res.zmin[keep]), np.abs(res.zmax[keep])]
+        if np.isfinite(res.k_max) and res.k_max > 0:
+            vals.append(res.k_max / w[keep])
+        v = np.concatenate(vals)
+        v = v[np.isfinite(v) & (v > 0)]
+        return (float(v.min()), float(v.max())) if v.size else (math.nan, math.nan)
+
+    def _off_scale_text(self, w: np.ndarray, res: StabilityResult, keep: np.ndarray) -> None:
+        if np.all(keep):
+            self.off_scale.setText("")
+            return
+        z = np.abs(np.concatenate([res.zmin[~keep], res.zmax[~keep]]))
+        z = z[np.isfinite(z)]
+        top = plain(float(z.max()), 3) if z.size else "∞"
+        self.off_scale.setText(f"↑ off-scale: |Z| rises to {top} N·s/m above ω = {plain(float(w[keep][-1]))} rad/s")
 
     def _update_fill(self, x1: np.ndarray, y1: np.ndarray, x2: np.ndarray, y2: np.ndarray) -> None:
         if x1.size < 2 or x2.size < 2:
@@ -83,6 +185,8 @@ class RangePlot(PlotView):
         self.fill.setBrush(pg.mkBrush(pal["fill"]))
         self.kmax_curve.setPen(pg.mkPen(pal["muted"], width=1.2, style=Qt.PenStyle.DashLine))
         self.bmin_curve.setPen(pg.mkPen(pal["muted"], width=1.2, style=Qt.PenStyle.DotLine))
+        self.off_scale.setColor(pal["mark"])
+        self.below_scale.setColor(pal["fg"])
 
     def export_series(self) -> list[Series]:
         return list(self._series)

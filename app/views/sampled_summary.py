@@ -15,9 +15,9 @@ from analysis.sampled import RIGID_GRASP, SimulationOptions, StabilityMap
 from analysis.sampled.terminations import PAPER_WALL_STIFFNESS
 from analysis.study import display_kind, map_point
 
-from app.views.base import plain
+from app.views.base import fmt, rich_label
 
-__all__ = ["map_subtitle", "design_on_map", "exact_summary", "scenario_note"]
+__all__ = ["map_subtitle", "design_on_map", "exact_summary", "scenario_note", "LINEAR_LABEL"]
 
 _GOOD, _BAD = "#2b8a3e", "#c92a2a"
 
@@ -50,7 +50,7 @@ def design_on_map(p: Profile, m: StabilityMap) -> tuple[float, float | None]:
 
 
 def _impedance_summary(p: Profile, limit: float | None, bound: float | None, delay: str) -> str:
-    bound_txt = "none" if bound is None else f"{plain(bound / 1e3, 4)} kN/m"
+    bound_txt = "none" if bound is None else f"{fmt(bound / 1e3, 4)} kN/m"
     if limit is None:
         exact_txt = "computing…"
     elif limit == 0:
@@ -58,10 +58,10 @@ def _impedance_summary(p: Profile, limit: float | None, bound: float | None, del
     elif math.isinf(limit):
         exact_txt = "no limit below 10⁹ N/m"
     else:
-        exact_txt = f"<b>{plain(limit / 1e3, 4)} kN/m</b>"
-    text = (f"Largest stable k_c at b_c = {plain(p.bc)} N·s/m — exact sampled loop ({delay}, hands-off, "
+        exact_txt = f"<b>{fmt(limit / 1e3, 4)} kN/m</b>"
+    text = (f"Largest stable k_c at b_c = {fmt(p.bc)} N·s/m — exact sampled loop ({delay}, hands-off, "
             f"rigid god-object wall): {exact_txt};  two-port bound (eq. 9, delay-free model): {bound_txt}.  "
-            f"Current k_c = {plain(p.kc / 1e3, 4)} kN/m")
+            f"Current k_c = {fmt(p.kc / 1e3, 4)} kN/m")
     if limit is not None and math.isfinite(limit):
         ok = p.kc < limit
         text += (f" is <span style='color:{_GOOD}'>below the exact limit</span>." if ok else
@@ -82,27 +82,33 @@ def _admittance_summary(p: Profile, limit: float | None, delay: str) -> str:
     elif limit == 0:
         exact_txt = "every m_c ≥ 1 g stable"
     else:
-        exact_txt = f"<b>{plain(limit, 4)} kg</b>"
-    text = (f"Smallest stable m_c at b_c = {plain(p.bc_adm)} N·s/m — exact sampled loop ({delay}, rigid grasp, "
-            f"free motion): {exact_txt}.  Current m_c = {plain(p.mc)} kg")
+        exact_txt = f"<b>{fmt(limit, 4)} kg</b>"
+    text = (f"Smallest stable m_c at b_c = {fmt(p.bc_adm)} N·s/m — exact sampled loop ({delay}, rigid grasp, "
+            f"free motion): {exact_txt}.  Current m_c = {fmt(p.mc)} kg")
     if limit is not None and math.isfinite(limit) and limit > 0:
         text += (f" is <span style='color:{_GOOD}'>above it</span>." if p.mc > limit else
                  f" is <span style='color:{_BAD}'><b>below it: the loop is unstable</b></span>.")
     return text
 
 
+#: What each verdict of the tab answers (the tab shows two: they can disagree, and say why).
+LINEAR_LABEL = "<b>Linear stability</b> (exact sampled loop, no friction, quantization or saturation): "
+
+
 def exact_summary(p: Profile, limit: float | None, bound: float | None, d: int, impl: bool) -> str:
-    """The exact limit at the current b_c against the two-port bound (``bound``: largest k_c, eq. 9)."""
+    """The exact limit at the current b_c against the two-port bound (``bound``: largest k_c, eq. 9),
+    labelled as the linear loop's answer (:data:`LINEAR_LABEL`)."""
     delay = f"{d}-sample computation delay" if d else "no computation delay"
     if impl:
         delay += " + implementation delay"
     if display_kind(p).is_impedance:
-        return _impedance_summary(p, limit, bound, delay)
-    return _admittance_summary(p, limit, delay)
+        return LINEAR_LABEL + rich_label(_impedance_summary(p, limit, bound, delay))
+    return LINEAR_LABEL + rich_label(_admittance_summary(p, limit, delay))
 
 
-def scenario_note(sec: SimulationSection, fresh: bool) -> str:
-    """What was simulated: grasp, environment, effects and delays."""
+def scenario_note(sec: SimulationSection, fresh: bool, display: str | None = None) -> str:
+    """What was simulated (grasp, environment, effects and delays), and how the simulation's verdict
+    relates to the linear limit of ``display`` (the profile's display; default impedance)."""
     sc, o = sec.scenario, sec.options
     ideal = dataclasses.replace(o, delay_samples=0, implementation_delay=False) == SimulationOptions()
     effects = "ideal sensors and actuator" if ideal else "with quantization / friction / saturation"
@@ -111,9 +117,15 @@ def scenario_note(sec: SimulationSection, fresh: bool) -> str:
         f"{f' until {sc.release_time:g} s' if math.isfinite(sc.release_time) else ''}")
     env = ("no wall" if not sc.wall else
            f"penalty wall {sc.wall_stiffness:g} N/m" if display_kind(sc.causality).is_impedance else "god-object wall")
+    linear = ("hands-off against a rigid wall, so a damped grasp can be stable beyond it"
+              if display is None or display_kind(display).is_impedance else
+              "a rigid grasp in free motion and the linear loop")
     note = (f"Scenario: {sc.name.replace('_', ' ')} ({grasp}; {env}); {effects}; delay {o.delay_samples} sample(s)"
-            f"{', implementation delay' if o.implementation_delay else ''}.  The exact limit above is for "
-            "hands-off against a rigid wall, so a damped grasp can be stable beyond it.")
+            f"{', implementation delay' if o.implementation_delay else ''}.  The linear limit above is for "
+            f"{linear}.")
+    if not ideal:
+        note += ("  With friction or quantization a small limit cycle below the rest threshold counts as "
+                 "stable here even where the linear loop is unstable.")
     if not fresh:
         note += "  (result of the previous inputs)"
     return note

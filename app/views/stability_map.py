@@ -14,6 +14,7 @@ import math
 import numpy as np
 import pyqtgraph as pg
 from PySide6.QtCore import QRectF, Qt
+from PySide6.QtGui import QFont, QFontMetrics
 from PySide6.QtWidgets import QWidget
 
 from analysis.sampled import StabilityMap
@@ -23,6 +24,8 @@ from app.views.base import PlotView, Series, plain
 
 __all__ = ["StabilityMapView", "PARAMETER_LABELS", "radius_colormap"]
 
+#: The rho = 1 contour: a dark line on a light halo (visible on blue, white, red and either theme).
+CONTOUR_PEN, CONTOUR_HALO = "#000000", "#ffffff"
 #: Colour scale capped here so that a few wildly unstable pixels do not wash out the boundary.
 RHO_CAP = 1.5
 
@@ -43,7 +46,11 @@ class StabilityMapView(PlotView):
         self.image = pg.ImageItem(axisOrder="row-major")
         self.image.setZValue(-10)
         self.plot.addItem(self.image)
-        self.contour = pg.IsocurveItem(level=1.0, pen=pg.mkPen("k", width=2), axisOrder="row-major")
+        # rho = 1 runs through the white band of the colour map and borders blue and red: a black line
+        # on a white halo is visible on all of them, in both themes
+        self.contour_halo = pg.IsocurveItem(level=1.0, pen=pg.mkPen(CONTOUR_HALO, width=4.5), axisOrder="row-major")
+        self.contour_halo.setParentItem(self.image)
+        self.contour = pg.IsocurveItem(level=1.0, pen=pg.mkPen(CONTOUR_PEN, width=2), axisOrder="row-major")
         self.contour.setParentItem(self.image)
         self.bar = pg.ColorBarItem(values=(0.9, 1.1), colorMap=radius_colormap(0.9, 1.1), width=18,
                                    label="spectral radius ρ", interactive=False,
@@ -58,10 +65,12 @@ class StabilityMapView(PlotView):
         self.xline.setZValue(19)
         self.xline.hide()
         self.plot.addItem(self.xline, ignoreBounds=True)
-        self.legend_line = pg.PlotDataItem([], [], pen=pg.mkPen("k", width=2))
+        self.legend_line = pg.PlotDataItem([], [], pen=pg.mkPen(CONTOUR_PEN, width=2),
+                                           shadowPen=pg.mkPen(CONTOUR_HALO, width=4.5))
         self.legend.addItem(self.legend_line, "ρ = 1")
-        self.legend.setOffset((10, -10))  # bottom left, over the (usually stable) low-gain corner
+        self.legend_outside(2)  # the map fills the plot: a legend inside would hide part of it
         self.map: StabilityMap | None = None
+        self.subtitle = ""
         self.levels = (0.9, 1.1)
         self._notes: list[str] = []
         self._point_note = ""
@@ -78,6 +87,7 @@ class StabilityMapView(PlotView):
         if m is None:
             self.image.clear()
             self.contour.setData(None)
+            self.contour_halo.setData(None)
             self.bump()
             return
         xn, xu = PARAMETER_LABELS.get(m.x_name, (m.x_name, ""))
@@ -99,10 +109,11 @@ class StabilityMapView(PlotView):
         dy = float(ly[1] - ly[0]) if ly.size > 1 else 1.0
         self.image.setRect(QRectF(lx[0] - dx / 2, ly[0] - dy / 2, dx * lx.size, dy * ly.size))
         self.contour.setData(np.where(np.isfinite(rho), rho, 10.0), 1.0)
+        self.contour_halo.setData(np.where(np.isfinite(rho), rho, 10.0), 1.0)
         stable = m.stable
         self.header.setText(f"<b>{self.title}</b>")
-        if subtitle:
-            self.plot.setTitle(f"<span style='font-size:9pt'>{subtitle}</span>")
+        self.subtitle = subtitle
+        self._fit_title()
         if stable.all():
             self._notes.append("the whole map is stable (ρ ≤ 1)")
         elif not stable.any():
@@ -145,11 +156,46 @@ class StabilityMapView(PlotView):
     def _refresh_warning(self) -> None:
         self.set_warning([*self._notes, self._point_note])
 
+    def _fit_title(self) -> None:
+        """The subtitle above the map, its "; "-separated parts wrapped to the plot's width.
+
+        The title is part of the plot's scene (exports keep it); one long line would set the plot's
+        minimum width beyond the widget and cut the map and its colour bar on the right.
+        """
+        if not self.subtitle:
+            self.plot.setTitle(None)
+            return
+        metrics = QFontMetrics(QFont(self.font().family(), 9))
+        # the title sits above the data area only: not above the y axis, not above the colour bar
+        axis = self.plot.getAxis("left")
+        avail = max(self.plot_widget.width() - max(axis.width(), 50) - max(self.bar.width(), 80) - 16, 100)
+        lines: list[str] = []
+        for part in self.subtitle.split("; "):
+            if lines and metrics.horizontalAdvance(f"{lines[-1]}; {part}") <= avail:
+                lines[-1] = f"{lines[-1]}; {part}"
+            else:
+                lines.append(part)
+        text = "<br>".join(lines)
+        if text != self.plot.titleLabel.text:
+            self.plot.setTitle(text, size="9pt", color=self.palette_colors()["fg"])
+            height = len(lines) * metrics.lineSpacing() + 8  # setTitle fixes one line's 30 px
+            self.plot.titleLabel.setMaximumHeight(height)
+            self.plot.layout.setRowFixedHeight(0, height)
+            self.fit_scene()
+
+    def resizeEvent(self, event: object) -> None:  # noqa: N802 - Qt API
+        super().resizeEvent(event)
+        self._fit_title()
+
     def restyle(self, pal: dict) -> None:
-        pen = pg.mkPen(pal["fg"], width=2)
-        self.contour.setPen(pen)
-        self.legend_line.setPen(pen)
         self.xline.setPen(pg.mkPen(pal["fg"], width=1.5, style=Qt.PenStyle.DashLine))
+        for name in ("left", "right"):
+            axis = self.bar.getAxis(name)
+            axis.setPen(pg.mkPen(pal["fg"]))
+            axis.setTextPen(pg.mkPen(pal["fg"]))
+        self.bar.getAxis("left").setLabel("spectral radius ρ", color=pal["fg"])
+        if self.subtitle:
+            self.plot.setTitle(self.plot.titleLabel.text, size="9pt", color=pal["fg"])
 
     def export_series(self) -> list[Series]:
         m = self.map

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pyqtgraph as pg
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
@@ -21,16 +22,38 @@ from app.views.base import PlotView, Series, plain
 __all__ = ["TimePlot", "TimeResponse", "verdict_text", "VERDICT_COLORS"]
 
 VERDICT_COLORS = {"stable": "#2b8a3e", "sustained oscillation": "#e67700", "divergent": "#c92a2a"}
+#: The same on the dark theme's background (contrast >= 4.5:1 on both themes' window colour).
+DARK_VERDICT_COLORS = {"stable": "#69db7c", "sustained oscillation": "#ffa94d", "divergent": "#ff8787"}
+#: Curve colours by theme: (light, dark), each with at least 3:1 contrast on its plot background.
+_CURVE_COLORS = {"blue": ("#1f5fbf", "#74a7ff"), "orange": ("#d9480f", "#ff922b"), "grey": ("#495057", "#ced4da"),
+                 "green": ("#2b8a3e", "#69db7c"), "purple": ("#862e9c", "#e599f7")}
+#: Compact legend entries (the curves' full names stay in the CSV export and the tooltips).
+_SHORT = {"handle x₁": "x₁ handle", "actuator xₙ": "xₙ actuator", "wall surface": "wall",
+          "F_h human": "F<sub>h</sub> human", "F_d actuator": "F<sub>d</sub> actuator",
+          "F_e environment": "F<sub>e</sub> environment", "absorbed by controller": "controller",
+          "observed (encoder)": "observed", "work of the human": "human", "PO (environment port)": "PO"}
+
+
+def pc_note(res: SimulationResult) -> str:
+    """The passivity observer/controller's summary (Hannaford & Ryu), empty when both are off."""
+    if res.passivity_energy is None:
+        return ""
+    e = np.asarray(res.passivity_energy, float)
+    text = f" Passivity observer: final energy {plain(float(e[-1]) * 1e3, 3)} mJ, lowest {plain(float(e.min()) * 1e3, 3)} mJ."
+    if res.pc_damping is not None and np.any(res.pc_damping):
+        text += f" PC damping up to {plain(float(np.max(res.pc_damping)), 4)} N·s/m."
+    return text
 
 
 def _um(x: float) -> str:
     return "–" if x is None or not math.isfinite(x) else f"{x * 1e6:.3g} µm"
 
 
-def verdict_text(v: Verdict) -> str:
-    """The verdict with the detector's numbers (rich text)."""
-    color = VERDICT_COLORS.get(v.kind, "#495057")
-    return (f"<span style='color:{color}; font-weight:700; font-size:13pt'>{v.kind.capitalize()}</span>"
+def verdict_text(v: Verdict, dark: bool = False) -> str:
+    """The verdict with the detector's numbers (rich text), coloured for the theme."""
+    color = (DARK_VERDICT_COLORS if dark else VERDICT_COLORS).get(v.kind, "#adb5bd" if dark else "#495057")
+    return (f"<b>Simulation:</b> <span style='color:{color}; font-weight:700; font-size:13pt'>"
+            f"{v.kind.capitalize()}</span>"
             f"&nbsp;&nbsp;— {v.reason}.  RMS of the detrended actuator position in the last two windows: "
             f"{_um(v.amplitude_previous)} → {_um(v.amplitude_last)} (rest threshold {_um(v.threshold)})")
 
@@ -42,9 +65,19 @@ class TimePlot(PlotView):
                  parent: QWidget | None = None) -> None:
         super().__init__(title, parent)
         self.set_axis_labels("t", "s", y_name, y_unit)
-        self.curves = {name: self.curve(name, color, 1.6, style) for name, color, style in curves}
+        self._colors = {name: color for name, color, _style in curves}
+        self._styles = {name: style for name, _color, style in curves}
+        self.curves = {name: self.curve(name, _CURVE_COLORS[color][0], 1.6, style) for name, color, style in curves}
+        self.legend_outside()
+        for name, item in self.curves.items():
+            self.set_legend_text(item, _SHORT.get(name, name))
         self.plot_widget.setMinimumSize(130, 120)
         self.cursor_label.setMinimumWidth(0)
+
+    def restyle(self, pal: dict) -> None:
+        for name, item in self.curves.items():
+            color = _CURVE_COLORS[self._colors[name]][1 if self._dark else 0]
+            item.setPen(pg.mkPen(color, width=1.6, style=self._styles[name]))
 
     def set_series(self, t: np.ndarray, values: dict[str, np.ndarray | None]) -> None:
         for name, item in self.curves.items():
@@ -81,12 +114,12 @@ class TimeResponse(QWidget):
         super().__init__(parent)
         solid, dash, dot = Qt.PenStyle.SolidLine, Qt.PenStyle.DashLine, Qt.PenStyle.DotLine
         self.positions = TimePlot("Positions", "x", "mm", [
-            ("handle x₁", "#1f5fbf", solid), ("actuator xₙ", "#d9480f", solid), ("wall surface", "#495057", dash)])
+            ("handle x₁", "blue", solid), ("actuator xₙ", "orange", solid), ("wall surface", "grey", dash)])
         self.forces = TimePlot("Forces", "F", "N", [
-            ("F_h human", "#2b8a3e", solid), ("F_d actuator", "#d9480f", solid), ("F_e environment", "#1f5fbf", dash)])
+            ("F_h human", "green", solid), ("F_d actuator", "orange", solid), ("F_e environment", "blue", dash)])
         self.energy = TimePlot("Energy (passivity observer)", "E", "mJ", [
-            ("absorbed by controller", "#d9480f", solid), ("observed (encoder)", "#862e9c", dot),
-            ("work of the human", "#2b8a3e", dash)])
+            ("absorbed by controller", "orange", solid), ("observed (encoder)", "purple", dot),
+            ("work of the human", "green", dash), ("PO (environment port)", "blue", dash)])
         for p in (self.forces, self.energy):
             p.plot.setXLink(self.positions.plot)
         self.verdict = QLabel("No simulation yet.")
@@ -94,6 +127,8 @@ class TimeResponse(QWidget):
         self.verdict.setWordWrap(True)
         self.kind: str | None = None
         self.result: SimulationResult | None = None
+        self._dark = False
+        self._note = ""
         plots = QHBoxLayout()
         plots.setContentsMargins(0, 0, 0, 0)
         for p in self.plot_views():
@@ -128,15 +163,27 @@ class TimeResponse(QWidget):
         self.forces.set_series(t, {"F_h human": res.f_h, "F_d actuator": res.f_d, "F_e environment": res.f_e})
         self.energy.set_series(t, {"absorbed by controller": res.energy * 1e3,
                                    "observed (encoder)": res.energy_observed * 1e3,
-                                   "work of the human": res.energy_human * 1e3})
+                                   "work of the human": res.energy_human * 1e3,
+                                   "PO (environment port)": None if res.passivity_energy is None
+                                   else res.passivity_energy * 1e3})
         e_min = float(np.nanmin(res.energy)) if res.energy.size else math.nan
-        self.energy.set_warning([f"controller generated up to {plain(-e_min * 1e3, 3)} mJ (energy < 0: "
-                                 "not passive)"] if e_min < -1e-9 else [])
+        self.energy.set_warning([f"passivity observer: controller generated up to {plain(-e_min * 1e3, 3)} mJ "
+                                 "(energy < 0: not passive)"] if e_min < -1e-9 else [])
         self.kind = res.verdict.kind
-        self.verdict.setText(verdict_text(res.verdict) + (f"<br><span style='color:gray'>{note}</span>"
-                                                          if note else ""))
+        self._note = note + pc_note(res)
+        self._show_verdict()
+
+    def _show_verdict(self) -> None:
+        res = self.result
+        if res is None:
+            return
+        muted = "#adb5bd" if self._dark else "#5c636a"  # 4.5:1 on either theme's window colour
+        self.verdict.setText(verdict_text(res.verdict, self._dark)
+                             + (f"<br><span style='color:{muted}'>{self._note}</span>" if self._note else ""))
 
     def apply_theme(self, dark: bool) -> None:
+        self._dark = dark
         for p in self.plot_views():
             p.apply_theme(dark)
+        self._show_verdict()
 

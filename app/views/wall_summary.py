@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import html
 import math
 
 import numpy as np
@@ -14,11 +15,13 @@ from app.views.base import fmt
 __all__ = ["wall_summary", "inf_spans"]
 
 
-def wall_summary(st: WallSettings, point: WallPoint, trade: WallTradeoff | None) -> str:
-    """The tab's summary (rich text): J (eq. 11), ‖L‖∞ (eqs. 16-17) and the robust optimum at B_c."""
+def wall_summary(st: WallSettings, point: WallPoint, trade: WallTradeoff | None, device: str = "") -> str:
+    """The tab's summary (rich text): which device (``device``, :func:`analysis.study.wall_device_label`),
+    J (eq. 11), ‖L‖∞ (eqs. 16-17) and the robust optimum at B_c."""
     pk = point.peak
     bad, good = "#d0312d", "#2b8a3e"
-    lines = [f"<b>Hold model:</b> {HOLD_LABELS[st.hold]}",
+    lines = [f"<b>{html.escape(device)}</b>"] if device else []
+    lines += [f"<b>Hold model:</b> {HOLD_LABELS[st.hold]}",
              f"<b>B<sub>c</sub> = {fmt(point.bc)} N·s/m</b>"]
     if point.index.finite:
         lines.append(f"J = {fmt(point.index.index)} m²/(N²·s)")

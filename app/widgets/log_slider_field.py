@@ -2,7 +2,10 @@
 
 Two-way binding: the field reads its value from the model whenever one of its ``fields`` changes,
 and sends user edits through ``write`` (an :class:`~app.commands.Editor` call) which returns the
-reason a value was refused, shown next to the field.  One slider drag carries one drag token, so
+reason a value was refused, shown next to the field while the field goes back to the model's value.
+The slider's range is a soft display range: a value typed beyond it is accepted when the model
+accepts it (the physical ranges of :mod:`analysis.chain.limits`), and refused with that range
+named otherwise.  One slider drag carries one drag token, so
 the whole drag is one undo step.
 """
 
@@ -15,12 +18,24 @@ from typing import Protocol
 from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QGridLayout, QLabel, QSizePolicy, QSlider, QWidget
 
+from analysis.chain import LIMITS
+
 from app.core.model import ProfileModel
 from app.widgets.sci_spin_box import SciSpinBox
 
-__all__ = ["LogSliderField", "SLIDER_STEPS"]
+__all__ = ["LogSliderField", "SLIDER_STEPS", "with_range"]
 
 SLIDER_STEPS = 1000
+
+
+def with_range(tooltip: str, field: str) -> str:
+    """``tooltip`` plus the field's physical range (:data:`analysis.chain.LIMITS`), which typed values
+    must respect (the slider only shows a part of it)."""
+    limit = LIMITS.get({"ratios": "damping_ratios"}.get(field, field))
+    if limit is None:
+        return tooltip
+    unit = f" {limit.unit}" if limit.unit else ""
+    return f"{tooltip}\nTyped values: {limit.lo:g} to {limit.hi:g}{unit} (the slider shows part of this range)"
 
 Reader = Callable[[ProfileModel], float]
 Writer = Callable[[float, "int | None"], "str | None"]
@@ -142,10 +157,17 @@ class LogSliderField(QWidget):
 
     @Slot()
     def refresh(self) -> None:
+        """Show the model's value and clear any refusal message (the model changed: a new edit)."""
+        if self.show_model_value():
+            self.set_error(None)
+
+    def show_model_value(self) -> bool:
+        """Put the model's value in the slider and the spin box (the message is left as it is);
+        False when the model has no such value (an element index gone)."""
         try:
             value = float(self._read(self._model))
         except (IndexError, ValueError):
-            return
+            return False
         self._syncing = True
         try:
             if not self.slider.isSliderDown():
@@ -153,7 +175,7 @@ class LogSliderField(QWidget):
             self.spin.setValue(value)
         finally:
             self._syncing = False
-        self.set_error(None)
+        return True
 
     def set_error(self, reason: str | None) -> None:
         self.error.setText(reason or "")
@@ -164,12 +186,15 @@ class LogSliderField(QWidget):
     def write(self, value: float, drag: int | None = None) -> str | None:
         """Send ``value`` as a user edit (``drag``: the token of a slider drag); returns the refusal reason.
 
-        A refused value is shown next to the field and changes nothing.
+        A refused value changes nothing: the field shows the model's value again at once, and the
+        reason (which names the allowed range) stays underneath until the next accepted edit.
         """
         reason = self._write(value, drag)
         if reason:
+            self.show_model_value()
             self.set_error(reason)
         else:
+            self.set_error(None)
             self.edited.emit(value)
         return reason
 

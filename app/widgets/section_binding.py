@@ -1,7 +1,8 @@
 """Read and write one parameter of an optional profile section (``wall``, ``observer``).
 
-A section that is ``None`` reads as its defaults; the first edit creates it, through the same undo
-command as any other edit (so undoing it restores ``None``).
+A section that is ``None`` reads as its defaults, which ``factory(profile)`` derives from the profile
+(:func:`analysis.study.wall_settings`: the profile's own device); the first edit creates it from
+them, through the same undo command as any other edit (so undoing it restores ``None``).
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from analysis import ValidationError
+from analysis.profiles.model import Profile
 
 from app.core.commands import Editor, describe_error
 from app.core.model import ProfileModel
@@ -19,16 +21,18 @@ __all__ = ["SectionBinding"]
 
 
 class SectionBinding:
-    """``section`` is the profile field, ``factory`` builds its defaults (e.g. ``WallSettings``)."""
+    """``section`` is the profile field, ``factory(profile)`` gives its settings (the section, or the
+    defaults derived from the profile: e.g. :func:`analysis.study.wall_settings`)."""
 
-    def __init__(self, model: ProfileModel, editor: Editor, section: str, factory: Callable[[], object],
+    def __init__(self, model: ProfileModel, editor: Editor, section: str, factory: Callable[[Profile], object],
                  title: str) -> None:
         self.model, self.editor, self.section, self.factory, self.title = model, editor, section, factory, title
 
     def current(self, model: ProfileModel | None = None) -> Any:
         """The section's settings object (its defaults while the profile has none)."""
-        value = (model or self.model).get(self.section)
-        return self.factory() if value is None else value
+        model = model or self.model
+        value = model.get(self.section)
+        return self.factory(model.profile) if value is None else value
 
     def reader(self, name: str) -> Callable[[ProfileModel], object]:
         return lambda m: getattr(self.current(m), name)

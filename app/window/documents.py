@@ -17,6 +17,7 @@ from PySide6.QtGui import QDropEvent, QUndoStack
 from PySide6.QtWidgets import QFileDialog, QMainWindow, QMenu, QMessageBox
 
 from analysis.profiles.io import Profile, ProfileError, bundled_profiles, load_profile, profile_to_dict
+from analysis.profiles.files import unwritable_reason
 
 from app.core.model import ProfileModel
 from app.core.settings import Settings
@@ -42,10 +43,11 @@ def is_bundled(path: str | os.PathLike) -> bool:
 
 
 def write_atomically(path: str, data: bytes) -> str | None:
-    """Write ``data`` to ``path`` through a ``QSaveFile``; returns the reason on failure."""
+    """Write ``data`` to ``path`` through a ``QSaveFile``; returns the reason on failure (the OS's:
+    ``"No such folder: …"``, :func:`analysis.profiles.files.unwritable_reason`, else Qt's)."""
     f = QSaveFile(path)
     if not f.open(QIODevice.OpenModeFlag.WriteOnly):
-        return f.errorString()
+        return unwritable_reason(path) or f.errorString()
     if f.write(data) != len(data):
         reason = f.errorString()
         f.cancelWriting()

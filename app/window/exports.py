@@ -1,16 +1,24 @@
-"""File → Export: a plot view as PNG (asks the width), SVG or CSV, through a file dialog."""
+"""File → Export: a plot view as PNG (asks the width), SVG or CSV, through a file dialog.
+
+An export computes what it shows first: a plot on a tab that was never opened (or is stale) is
+brought up to date -- its tab pulls its graph nodes, the asynchronous ones on the worker behind a
+progress dialog -- and an export that still has nothing to show is refused with the reason,
+never written as an empty file.
+"""
 
 from __future__ import annotations
 
 import os
+from typing import Any
 
-from PySide6.QtWidgets import QFileDialog, QInputDialog, QMainWindow, QMessageBox
+from PySide6.QtCore import QEventLoop, Qt, QTimer
+from PySide6.QtWidgets import QFileDialog, QInputDialog, QMainWindow, QMessageBox, QProgressDialog
 
 from app.core.settings import Settings
 from app.views import export
 from app.views.base import PlotView
 
-__all__ = ["export_view", "default_export_name"]
+__all__ = ["export_view", "default_export_name", "bring_up_to_date", "has_content"]
 
 _WRITERS = {"png": None, "svg": export.export_svg, "csv": export.export_csv}
 
@@ -21,11 +29,85 @@ def default_export_name(view: PlotView, fmt: str) -> str:
     return f"{base}.{fmt}"
 
 
+def has_content(view: PlotView) -> bool:
+    """Whether an export of ``view`` has something to say: data, or a note why there is none."""
+    return bool(view.export_notes()) or any(len(s.x) for s in view.export_series())
+
+
+def _pending(window: Any, tab: Any) -> list[str]:
+    graph = window.graph
+    return [n for n in sorted(tab.nodes) if n in graph and graph.node(n).asynchronous and not graph.is_fresh(n)]
+
+
+def _wait_for(window: Any, names: list[str], title: str) -> str | None:
+    """Run the nodes ``names`` on the worker and wait (progress dialog, Cancel); the reason if not done."""
+    graph = window.graph
+    failures: dict[str, str] = {}
+    dialog = QProgressDialog(f"Computing “{title}” for the export…", "Cancel", 0, 0, window)
+    dialog.setWindowTitle("Export")
+    dialog.setWindowModality(Qt.WindowModality.WindowModal)
+    dialog.setMinimumDuration(300)
+    loop = QEventLoop()
+
+    def check(*_args: object) -> None:
+        if dialog.wasCanceled() or failures or all(graph.is_fresh(n) for n in names):
+            loop.quit()
+
+    def failed(name: str, message: str) -> None:
+        if name in names:
+            failures[name] = message
+        check()
+
+    for name in names:
+        graph.request(name)
+    connections = [(graph.ready, check), (graph.failed, failed), (graph.cancelled, check), (dialog.canceled, check)]
+    for signal, slot in connections:
+        signal.connect(slot)
+    QTimer.singleShot(0, check)
+    try:
+        loop.exec()
+    finally:
+        for signal, slot in connections:
+            signal.disconnect(slot)
+        cancelled = dialog.wasCanceled()
+        dialog.hide()  # not close(): QProgressDialog's close event counts as Cancel
+        dialog.deleteLater()
+    if failures:
+        return "; ".join(f"{n} failed: {m}" for n, m in failures.items())
+    return "cancelled while computing" if cancelled else None
+
+
+def bring_up_to_date(window: Any, view: PlotView) -> str | None:
+    """Compute what ``view`` shows (its tab's graph nodes) and refresh its tab; the reason if it cannot."""
+    tab = next((t for t in getattr(window, "analysis_tabs", []) if view in t.plot_views()), None)
+    if tab is None:
+        return None
+    pending = _pending(window, tab)
+    if tab.stale or pending:
+        tab.refresh()  # sets the tab's node parameters (e.g. the map's axes) and pulls the nodes
+        pending = _pending(window, tab)
+        if pending:
+            reason = _wait_for(window, pending, view.title.split(":")[0])
+            if reason:
+                return reason
+        tab.refresh()
+    return None
+
+
 def export_view(window: QMainWindow, settings: Settings, view: PlotView, fmt: str, path: str | None = None,
                 width: int | None = None) -> bool:
-    """Export ``view``; asks for the file (and the PNG width) unless given.  False if cancelled or failed."""
+    """Export ``view``; asks for the file (and the PNG width) unless given.  False if cancelled or failed.
+
+    The view is brought up to date first; an export with nothing to show is refused (a message box).
+    """
     if fmt not in _WRITERS:
         raise ValueError(f"unknown export format {fmt!r}")
+    reason = bring_up_to_date(window, view)
+    if reason is None and not has_content(view):
+        reason = "the plot has no data yet"
+    if reason is not None:
+        QMessageBox.warning(window, "Nothing exported", f"{view.title.split(':')[0]} was not exported: {reason}.")
+        return False
     if path is None:
         start = os.path.join(settings.last_directory(), default_export_name(view, fmt))
         path, _ = QFileDialog.getSaveFileName(window, f"Export {fmt.upper()}", start, export.FORMATS[fmt])

@@ -30,6 +30,7 @@ from app.views.base import PlotView
 from app.views.verdict import VerdictView
 from app.widgets.task_progress import TaskProgress
 from app.window.design_actions import DesignActions
+from app.window.robust_actions import RobustActions
 from app.window.documents import APP_NAME, Documents, default_profile, dropped_files
 from app.window.exports import export_view
 from app.window.live_refresh import LiveRefresh
@@ -62,9 +63,11 @@ class MainWindow(QMainWindow):
         self.design = DesignActions(self.model, self.graph, self.editor, self.act_maximize, self.act_minimize,
                                     self.statusBar().showMessage, self)
         self._build_layout()
-        self.theme = Theme(self.settings, lambda: self.analysis_tabs, self)
+        self.theme = Theme(self.settings, lambda: [self.verdict, *self.analysis_tabs], self)
         self.live = LiveRefresh(self.graph, self.verdict, self.tabs, self.analysis_tabs, self)
         build_menus(self, self.window_actions)
+        self.robust_actions = RobustActions(self, self.model, self.graph, self.editor,
+                                            self.statusBar().showMessage, self.verdict)
         self._connect()
         self.setAcceptDrops(True)
         self.resize(1400, 900)
@@ -76,7 +79,9 @@ class MainWindow(QMainWindow):
         self.refresh_visible()
 
     def _build_layout(self) -> None:
-        """Parameter panel | (verdict above the analysis tabs); the task progress in the status bar."""
+        """The verdict across the window above parameter panel | analysis tabs; the task progress in the
+        status bar.  The verdict spans the whole width so that its badge and six numbers fit on a laptop
+        screen (1280 px)."""
         self.panel = ParameterPanel(self.model, self.editor, self.act_maximize, self.act_minimize)
         self.verdict = VerdictView()
         self.tabs = QTabWidget()
@@ -87,19 +92,19 @@ class MainWindow(QMainWindow):
             tab = cls(self.ctx)
             self.analysis_tabs.append(tab)
             self.tabs.addTab(tab, cls.title)
-        right = QWidget()
-        rl = QVBoxLayout(right)
-        rl.setContentsMargins(0, 0, 0, 0)
-        rl.setSpacing(4)
-        rl.addWidget(self.verdict)
-        rl.addWidget(self.tabs, 1)
         self.splitter = QSplitter(Qt.Orientation.Horizontal)
         self.splitter.addWidget(self.panel)
-        self.splitter.addWidget(right)
+        self.splitter.addWidget(self.tabs)
         self.splitter.setStretchFactor(1, 1)
-        self.splitter.setSizes([430, 970])
+        self.splitter.setSizes([380, 1020])
         self.splitter.setChildrenCollapsible(False)
-        self.setCentralWidget(self.splitter)
+        central = QWidget()
+        cl = QVBoxLayout(central)
+        cl.setContentsMargins(4, 4, 4, 0)
+        cl.setSpacing(4)
+        cl.addWidget(self.verdict)
+        cl.addWidget(self.splitter, 1)
+        self.setCentralWidget(central)
         self.progress = TaskProgress(self.graph)
         self.statusBar().addPermanentWidget(self.progress)
 

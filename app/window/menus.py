@@ -6,15 +6,19 @@ The menus call the window's public methods (``new_profile``, ``open_dialog``, ``
 
 from __future__ import annotations
 
+import html
+import re
 from collections.abc import Callable
 from typing import Any
 
+from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import QMainWindow, QMenu, QMenuBar
 
 from analysis.profiles.io import ProfileError, bundled_profiles, load_profile
 
-__all__ = ["make_action", "WindowActions", "build_menus", "EXPORT_FORMATS"]
+__all__ = ["make_action", "WindowActions", "build_menus", "EXPORT_FORMATS", "plain_title", "export_entries",
+           "fill_export_menu"]
 
 EXPORT_FORMATS = (("png", "PNG image…"), ("svg", "SVG drawing…"), ("csv", "CSV data…"))
 
@@ -68,12 +72,48 @@ def _presets_menu(window: Any, menu: QMenu) -> None:
         act.triggered.connect(lambda _=False, n=name: window.load_preset(n))
 
 
+def plain_title(text: str) -> str:
+    """A plot title as plain text for a menu: ``J(B<sub>c</sub>)`` -> ``J(B_c)``, entities decoded."""
+    text = re.sub(r"<sub>(.*?)</sub>", r"_\1", text)
+    text = re.sub(r"<sup>(.*?)</sup>", r"^\1", text)
+    return " ".join(html.unescape(re.sub(r"<[^>]+>", "", text)).split())
+
+
+def export_entries(window: Any) -> list[tuple[str, list[tuple[str, Any]]]]:
+    """(tab title, [(unique plain plot title, view), ...]) for every tab with plots, in tab order."""
+    out = []
+    for tab in window.analysis_tabs:
+        views = tab.plot_views()
+        if not views:
+            continue
+        names: list[tuple[str, Any]] = []
+        seen: dict[str, int] = {}
+        for view in views:
+            name = plain_title(view.title) or type(view).__name__
+            seen[name] = seen.get(name, 0) + 1
+            names.append((name if seen[name] == 1 else f"{name} ({seen[name]})", view))
+        out.append((plain_title(tab.title), names))
+    return out
+
+
+def fill_export_menu(window: Any, menu: QMenu) -> None:
+    """File → Export: one submenu per tab, one per plot in it, then PNG / SVG / CSV (rebuilt when shown,
+    so a title that follows the display is current)."""
+    for old in menu.findChildren(QMenu, options=Qt.FindChildOption.FindDirectChildrenOnly):
+        old.deleteLater()  # the last fill's submenus (clear() keeps them)
+    menu.clear()
+    for tab_title, views in export_entries(window):
+        tab_menu = menu.addMenu(tab_title.replace("&", "&&"))
+        for name, view in views:
+            sub = tab_menu.addMenu(name.replace("&", "&&"))
+            for fmt, label in EXPORT_FORMATS:
+                act = sub.addAction(label)
+                act.triggered.connect(lambda _=False, v=view, f=fmt: window.export_view(v, f))
+
+
 def _export_menu(window: Any, menu: QMenu) -> None:
-    for view in window.plot_views():
-        sub = menu.addMenu(view.title.split(":")[0])
-        for fmt, label in EXPORT_FORMATS:
-            act = sub.addAction(label)
-            act.triggered.connect(lambda _=False, v=view, f=fmt: window.export_view(v, f))
+    fill_export_menu(window, menu)
+    menu.aboutToShow.connect(lambda: fill_export_menu(window, menu))
 
 
 def _file_menu(window: Any, bar: QMenuBar, acts: WindowActions) -> None:

@@ -34,13 +34,19 @@ def wait_refreshed(qtbot, view, before: int) -> None:
 
 def assert_plots_match(win, res) -> None:
     tab = stab_tab(win)
-    x, y = tab.stability.coupling_curve.getOriginalDataset()
-    ex, ey, _ = clean_xy(res.w, res.coupling_term, True, False)
-    np.testing.assert_allclose(x, ex, rtol=1e-12)
-    np.testing.assert_allclose(y, ey, rtol=1e-9, atol=0)
-    x, y = tab.stability.bound_curve.getOriginalDataset()
-    ex, ey, _ = clean_xy(res.w, res.bound, True, False)
-    np.testing.assert_allclose(y, ey, rtol=1e-9, atol=0)
+    if tab.view_mode == "ratio":  # the default view: bound / coupling term
+        x, y = tab.stability.ratio_curve.getOriginalDataset()
+        ex, ey, _ = clean_xy(res.w, res.bound / res.coupling_term, True, False)
+        np.testing.assert_allclose(x, ex, rtol=1e-12)
+        np.testing.assert_allclose(y, ey, rtol=1e-9, atol=0)
+    else:
+        x, y = tab.stability.coupling_curve.getOriginalDataset()
+        ex, ey, _ = clean_xy(res.w, res.coupling_term, True, False)
+        np.testing.assert_allclose(x, ex, rtol=1e-12)
+        np.testing.assert_allclose(y, ey, rtol=1e-9, atol=0)
+        x, y = tab.stability.bound_curve.getOriginalDataset()
+        ex, ey, _ = clean_xy(res.w, res.bound, True, False)
+        np.testing.assert_allclose(y, ey, rtol=1e-9, atol=0)
     x, y = tab.range.zmax_curve.getOriginalDataset()
     ex, ey, _ = clean_xy(res.w, np.abs(res.zmax), True, True)
     np.testing.assert_allclose(y, ey, rtol=1e-9)
@@ -174,6 +180,7 @@ def test_minimize_mc_runs_on_worker_and_sets_core_design(win, qtbot):
 
 
 def test_admittance_display_plots(win, qtbot):
+    stab_tab(win).set_view_mode("values")
     before = stab_tab(win).stability.revision
     win.editor.edit("display", "admittance")
     qtbot.waitUntil(lambda: stab_tab(win).stability.revision > before, timeout=5000)
@@ -188,11 +195,12 @@ def test_admittance_display_plots(win, qtbot):
 
 def test_log_y_shows_absolute_values_with_note(win, qtbot):
     tab = stab_tab(win)
-    tab.log_y_box.setChecked(True)
+    tab.set_view_mode("log")
+    assert tab.mode_box.currentData() == "log"
     x, y = tab.stability.bound_curve.getOriginalDataset()
     assert np.all(y > 0)
     assert "|values|" in tab.stability.warning.text()
-    tab.log_y_box.setChecked(False)
+    tab.set_view_mode("ratio")
 
 
 # -- files ---------------------------------------------------------------------------------------

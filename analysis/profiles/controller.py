@@ -1,0 +1,130 @@
+"""The optional ``controller`` section (schema 5): the controller as built (issue 15).
+
+It holds the controller's velocity estimate (:class:`~analysis.chain.velocity_filter.VelocityFilter`,
+Chawda, Celik & O'Malley 2015), the B range of the Z-width region of Colgate & Brown (ICRA 1994)
+and, optionally, the path of a CSV of hardware trials (columns ``b``, ``k``, ``stable``; read by
+:func:`analysis.sampled.load_trials`)::
+
+    "controller": {"velocity_filter": {"kind": "lowpass1", "cutoff": 188.5},
+                   "b_range": {"min": 0.1, "max": 100.0, "points": 100},
+                   "trials": "trials.csv"}
+
+Every key is optional (a missing ``velocity_filter`` is the backward difference, a missing
+``b_range`` the default 0.1-100 N s/m at 100 points).  Errors are :class:`ProfileError` at the
+JSON path, e.g. ``$.controller.velocity_filter.cutoff``.
+
+Numerics only: this module never imports Qt.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from analysis.chain.velocity_filter import BACKWARD, VelocityFilter
+from analysis.errors import ValidationError
+from analysis.profiles.errors import ProfileError
+
+__all__ = ["ControllerSection", "DEFAULT_B_RANGE", "DEFAULT_B_POINTS", "parse_controller"]
+
+#: The default B range of the Z-width region (N s/m) and its number of values.
+DEFAULT_B_RANGE = (0.1, 100.0)
+DEFAULT_B_POINTS = 100
+_MAX_B_POINTS = 1000
+_KEYS = ("velocity_filter", "b_range", "trials")
+
+
+@dataclass(frozen=True)
+class ControllerSection:
+    """The controller as built: velocity filter, the region's B range (N s/m) and a trials file.
+
+    ``b_range`` is ``(min, max)`` with ``0 < min < max`` finite; ``b_points`` in 2..1000;
+    ``trials`` a path (relative paths are relative to the working directory) or ``None``.
+    """
+
+    velocity_filter: VelocityFilter = field(default=BACKWARD)
+    b_range: tuple[float, float] = DEFAULT_B_RANGE
+    b_points: int = DEFAULT_B_POINTS
+    trials: str | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.velocity_filter, VelocityFilter):
+            raise ValidationError("velocity_filter", "a VelocityFilter", self.velocity_filter)
+        try:
+            lo, hi = (float(x) for x in self.b_range)
+        except (TypeError, ValueError):
+            raise ValidationError("b_range", "two numbers (min, max) in N s/m", self.b_range) from None
+        if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
+            raise ValidationError("b_range", "0 < min < max, finite (N s/m)", self.b_range)
+        object.__setattr__(self, "b_range", (lo, hi))
+        n = self.b_points
+        if isinstance(n, bool) or not isinstance(n, int) or not 2 <= n <= _MAX_B_POINTS:
+            raise ValidationError("b_points", f"an integer from 2 to {_MAX_B_POINTS}", n)
+        if self.trials is not None and (not isinstance(self.trials, str) or not self.trials.strip()):
+            raise ValidationError("trials", "a non-empty path string or null", self.trials)
+
+    def check(self, sample_time: float) -> None:
+        """Raises ValidationError (field ``cutoff``) when the filter's cut-off is above Nyquist."""
+        self.velocity_filter.check(sample_time)
+
+    def replace(self, **changes: Any) -> ControllerSection:
+        """A copy with some fields changed, validated again."""
+        return dataclasses.replace(self, **changes)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON-ready section (``inf`` cut-off written as ``"inf"``)."""
+        out: dict[str, Any] = {
+            "velocity_filter": self.velocity_filter.to_dict(),
+            "b_range": {"min": self.b_range[0], "max": self.b_range[1], "points": self.b_points},
+        }
+        if self.trials is not None:
+            out["trials"] = self.trials
+        return out
+
+
+def _b_range(value: object) -> tuple[tuple[float, float], int]:
+    if not isinstance(value, Mapping):
+        raise ProfileError.at("$.controller.b_range", "a JSON object with keys min, max, points", value)
+    unknown = set(value) - {"min", "max", "points"}
+    if unknown:
+        raise ProfileError.at(f"$.controller.b_range.{sorted(map(str, unknown))[0]}", "no such key (min, max, points)",
+                              None)
+    out = []
+    for key, default in (("min", DEFAULT_B_RANGE[0]), ("max", DEFAULT_B_RANGE[1])):
+        x = value.get(key, default)
+        if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x) or x <= 0:
+            raise ProfileError.at(f"$.controller.b_range.{key}", "a number > 0 and finite (N s/m)", x)
+        out.append(float(x))
+    if not out[0] < out[1]:
+        raise ProfileError.at("$.controller.b_range.max", f"a number > min = {out[0]:g} (N s/m)", out[1])
+    n = value.get("points", DEFAULT_B_POINTS)
+    if isinstance(n, bool) or not isinstance(n, int) or not 2 <= n <= _MAX_B_POINTS:
+        raise ProfileError.at("$.controller.b_range.points", f"an integer from 2 to {_MAX_B_POINTS}", n)
+    return (out[0], out[1]), n
+
+
+def parse_controller(data: object) -> ControllerSection:
+    """The ``controller`` section of a (migrated) profile dict; ProfileError at the JSON path."""
+    if not isinstance(data, Mapping):
+        raise ProfileError.at("$.controller", "a JSON object with keys " + ", ".join(_KEYS), data)
+    unknown = set(data) - set(_KEYS)
+    if unknown:
+        raise ProfileError.at(f"$.controller.{sorted(map(str, unknown))[0]}", "no such key (" + ", ".join(_KEYS) + ")",
+                              None)
+    vf = BACKWARD
+    if "velocity_filter" in data:
+        try:
+            vf = VelocityFilter.from_dict(data["velocity_filter"])
+        except ValidationError as err:
+            where = "$.controller.velocity_filter"
+            if err.field and err.field != VelocityFilter.record_name:
+                where += f".{err.field}"
+            raise ProfileError.at(where, err.allowed, err.value) from err
+    b_range, points = _b_range(data.get("b_range", {}))
+    trials = data.get("trials")
+    if trials is not None and (not isinstance(trials, str) or not trials.strip()):
+        raise ProfileError.at("$.controller.trials", "a non-empty path string or null", trials)
+    return ControllerSection(velocity_filter=vf, b_range=b_range, b_points=points, trials=trials)

@@ -1,0 +1,244 @@
+"""The optimum velocity filter, and hardware Z-width trials scored against the exact region.
+
+Optimum filter
+--------------
+Chawda, Celik & O'Malley (ASME J. Dyn. Sys. Meas. Control 137(2), 024503, 2015) find that the
+Z-width area of a haptic interface has a maximum over the cut-off of the velocity filter (the
+finite difference followed by a low-pass).  :func:`optimal_filter` computes the area of the
+exact region (:func:`~analysis.sampled.zwidth.zwidth_region`, :data:`OPTIMIZER_AREA` by default)
+for each cut-off of a grid, takes the best, and refines it with a bounded scalar search in
+``log(cut-off)`` between the grid neighbours of the best point (Brent's bounded method).  The
+area is not unimodal in general (a flexible device shows several local maxima), so the grid
+decides the basin and the refinement only polishes it.
+
+Measured trials
+---------------
+Colgate & Brown (ICRA 1994) measured the Z-width point by point: a wall ``(B, K)`` is tried on
+the hardware and judged stable or not.  :func:`load_trials` reads such a CSV (columns ``b``,
+``k``, ``stable`` as 1/0, any order, other columns ignored; blank lines and ``#`` comments
+skipped); every problem is a :class:`~analysis.errors.ValidationError` whose field names the
+file, the line and the column.  :func:`score_trials` compares each trial with the region
+(:meth:`~analysis.sampled.zwidth.ZWidthRegion.k_limit`) and lists those the analysis gets wrong.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import optimize
+
+from analysis.chain.device import Device
+from analysis.chain.velocity_filter import FILTER_KINDS, VelocityFilter
+from analysis.checks import choice
+from analysis.errors import ValidationError
+from analysis.sampled.zwidth import OPTIMIZER_AREA, ZWidthRegion, check_b_values, region_area, stiffness_limits
+
+__all__ = ["FilterOptimum", "optimal_filter", "MeasuredTrials", "load_trials", "TrialScore", "score_trials"]
+
+_AREAS = ("area_linear", "area_log")
+
+
+@dataclass(frozen=True)
+class FilterOptimum:
+    """The Z-width area against the filter cut-off (rad/s) and the maximizing cut-off.
+
+    ``areas[i]`` belongs to ``cutoffs[i]``; ``cutoff``/``area`` is the refined optimum;
+    ``backward_area`` is the area with the raw backward difference, for comparison;
+    ``measure`` names the area maximized (``"area_linear"`` or ``"area_log"``).
+    """
+
+    kind: str
+    cutoffs: np.ndarray
+    areas: np.ndarray
+    cutoff: float
+    area: float
+    backward_area: float
+    measure: str
+
+    @property
+    def interior(self) -> bool:
+        """True when the optimum lies strictly inside the cut-off grid (Chawda et al.'s shape)."""
+        return bool(self.cutoffs[0] < self.cutoff < self.cutoffs[-1] and self.area > self.backward_area)
+
+
+def optimal_filter(device: Device, kind: str = "lowpass1", cutoffs: np.ndarray | None = None, *,
+                   b: np.ndarray | None = None, delay_samples: int = 0, measure: str = OPTIMIZER_AREA,
+                   k_range: tuple[float, float] = (1.0, 1e9), refine_iterations: int = 6, per_decade: int = 12,
+                   progress: Callable[[int, int], None] | None = None,
+                   cancelled: Callable[[], bool] | None = None, **region_options) -> FilterOptimum | None:
+    """Area of the Z-width region against the cut-off of a ``kind`` filter, and its maximum.
+
+    Default cut-offs: 30 from 2 pi 5 rad/s to 0.9 of Nyquist.  ``progress(done, total)`` after
+    each region (``total`` = grid + refinement budget); ``None`` once ``cancelled()`` is true.
+    ``per_decade`` is the K scan resolution of each region (12 here, half of
+    :func:`~analysis.sampled.zwidth.zwidth_region`'s 24, for speed: an unstable window narrower
+    than 10^(1/12), 21 %, below the first crossing could be missed; each K_max is bracketed to
+    1e-5 relative, plenty for an area).
+    ``region_options`` go to :func:`~analysis.sampled.zwidth.stiffness_limits` (termination ...).
+    """
+    choice("measure", measure, _AREAS, allowed=" or ".join(_AREAS))
+    cs = _cutoffs(kind, cutoffs, device.sample_time)
+    bs = check_b_values(b)
+    total = cs.size + refine_iterations + 1
+
+    def area(cutoff: float | None) -> float:
+        vf = None if cutoff is None else VelocityFilter(kind, cutoff)
+        k = stiffness_limits(device, bs, delay_samples, vf, k_range=k_range, per_decade=per_decade,
+                             rtol=1e-5, **region_options)
+        return region_area(bs, k, k_range[0], k_range[1])[_AREAS.index(measure)]
+
+    areas = np.empty(cs.size)
+    for i, c in enumerate(cs.tolist()):
+        if cancelled is not None and cancelled():
+            return None
+        areas[i] = area(c)
+        if progress is not None:
+            progress(i + 1, total)
+    best = _refine(area, cs, areas, refine_iterations, total, progress, cancelled)
+    if best is None:
+        return None
+    back = area(None)
+    if progress is not None:
+        progress(total, total)
+    return FilterOptimum(kind=kind, cutoffs=cs, areas=areas, cutoff=best[0], area=best[1], backward_area=back,
+                         measure=measure)
+
+
+def _cutoffs(kind: str, cutoffs: np.ndarray | None, T: float) -> np.ndarray:
+    """The validated cut-off grid (default 30 from 2 pi 5 rad/s to 0.9 of Nyquist)."""
+    choice("kind", kind, [k for k in FILTER_KINDS if k != "backward"], allowed="lowpass1 or butter2")
+    if cutoffs is None:
+        cutoffs = np.geomspace(2 * math.pi * 5, 0.9 * math.pi / T, 30)
+    cs = np.asarray(cutoffs, float).reshape(-1)
+    for c in cs.tolist():
+        VelocityFilter(kind, c).check(T)
+    if cs.size < 3 or np.any(np.diff(cs) <= 0):
+        raise ValidationError("cutoffs", "at least three increasing cut-offs (rad/s)", cutoffs)
+    return cs
+
+
+def _refine(area: Callable[[float], float], cs: np.ndarray, areas: np.ndarray, iterations: int, total: int,
+            progress: Callable[[int, int], None] | None,
+            cancelled: Callable[[], bool] | None) -> tuple[float, float] | None:
+    """Brent's bounded search in log(cut-off) between the grid neighbours of the best point."""
+    j = int(np.argmax(areas))
+    best_c, best_a = float(cs[j]), float(areas[j])
+    lo, hi = math.log(cs[max(j - 1, 0)]), math.log(cs[min(j + 1, cs.size - 1)])
+    calls = [cs.size]
+
+    def neg(x: float) -> float:
+        if cancelled is not None and cancelled():
+            raise _Cancelled
+        calls[0] += 1
+        if progress is not None:
+            progress(min(calls[0], total - 1), total)
+        return -area(math.exp(x))
+
+    try:
+        r = optimize.minimize_scalar(neg, bounds=(lo, hi), method="bounded",
+                                     options={"maxiter": iterations, "xatol": 5e-3})
+    except _Cancelled:
+        return None
+    if -r.fun > best_a:
+        best_c, best_a = math.exp(float(r.x)), float(-r.fun)
+    return best_c, best_a
+
+
+class _Cancelled(Exception):
+    """Raised inside the refinement when ``cancelled()`` turns true."""
+
+
+@dataclass(frozen=True)
+class MeasuredTrials:
+    """Hardware trials: wall damping ``b`` (N s/m), stiffness ``k`` (N/m), ``stable`` flags, file lines."""
+
+    path: str
+    b: np.ndarray
+    k: np.ndarray
+    stable: np.ndarray
+    lines: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.b.size)
+
+
+def _cell(name: str, line: int, column: str, text: str) -> float:
+    where = f"{name}: line {line}, column {column}"
+    try:
+        x = float(text)
+    except ValueError:
+        raise ValidationError(where, "a number", text) from None
+    if not math.isfinite(x) or x < 0:
+        raise ValidationError(where, ">= 0 and finite", text)
+    return x
+
+
+def load_trials(path: str | os.PathLike) -> MeasuredTrials:
+    """Read a CSV of trials (module docstring); errors name the file, the line and the column."""
+    name = os.fspath(path)
+    try:
+        with open(name, newline="", encoding="utf-8-sig") as fh:
+            rows = [(i + 1, r) for i, r in enumerate(csv.reader(fh)) if r and not r[0].lstrip().startswith("#")
+                    and any(c.strip() for c in r)]
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ValidationError(name, "a readable UTF-8 CSV file", str(exc)) from exc
+    if not rows:
+        raise ValidationError(name, "a header row with columns b, k, stable", "an empty file")
+    head_line, header = rows[0]
+    cols = [h.strip().lower() for h in header]
+    idx = {}
+    for col in ("b", "k", "stable"):
+        if cols.count(col) != 1:
+            raise ValidationError(f"{name}: line {head_line}, column {col}", "exactly one column named so", header)
+        idx[col] = cols.index(col)
+    b, k, st, lines = [], [], [], []
+    for line, row in rows[1:]:
+        if len(row) < len(cols):
+            raise ValidationError(f"{name}: line {line}", f"{len(cols)} columns", len(row))
+        b.append(_cell(name, line, "b", row[idx["b"]]))
+        k.append(_cell(name, line, "k", row[idx["k"]]))
+        flag = row[idx["stable"]].strip()
+        if flag not in ("0", "1"):
+            raise ValidationError(f"{name}: line {line}, column stable", "1 (stable) or 0 (unstable)", flag)
+        st.append(flag == "1")
+        lines.append(line)
+    if not b:
+        raise ValidationError(name, "at least one trial row", "a header only")
+    return MeasuredTrials(path=name, b=np.array(b), k=np.array(k), stable=np.array(st, dtype=bool),
+                          lines=np.array(lines, dtype=int))
+
+
+@dataclass(frozen=True)
+class TrialScore:
+    """Trials against a region: ``predicted`` stable flags, ``wrong`` indices (analysis disagrees),
+    ``outside`` indices (B outside the region's range: not scored)."""
+
+    predicted: np.ndarray
+    wrong: np.ndarray
+    outside: np.ndarray
+    scored: int
+
+    @property
+    def wrong_count(self) -> int:
+        return int(self.wrong.size)
+
+    def describe(self, trials: MeasuredTrials) -> list[str]:
+        """One line per wrong trial: file line, (B, K), measured and predicted."""
+        word = {True: "stable", False: "unstable"}
+        return [f"line {trials.lines[i]}: B = {trials.b[i]:.4g} N s/m, K = {trials.k[i]:.4g} N/m measured "
+                f"{word[bool(trials.stable[i])]}, predicted {word[bool(self.predicted[i])]}" for i in self.wrong]
+
+
+def score_trials(region: ZWidthRegion, trials: MeasuredTrials) -> TrialScore:
+    """Predicted stable iff ``k <= K_max(b)`` of the region (interpolated in log B)."""
+    lim = region.k_limit(trials.b)
+    outside = np.isnan(lim)
+    predicted = np.where(outside, False, trials.k <= np.nan_to_num(lim, nan=0.0))
+    wrong = np.flatnonzero(~outside & (predicted != trials.stable))
+    return TrialScore(predicted=predicted, wrong=wrong, outside=np.flatnonzero(outside),
+                      scored=int(np.count_nonzero(~outside)))

@@ -1,0 +1,270 @@
+"""What the app, the CLI and the report compute for identification and robust designs (issue 14).
+
+* :func:`identify_chain` -- fit the chain to measurements at the chosen order and, for the order table,
+  every order ``1..max_masses`` (AIC, BIC, residual), with ``progress``/``cancelled`` hooks;
+* :func:`profile_with_fit` -- the profile with the fitted device and an ``identification``
+  section (the 95 % intervals of the free parameters and the embedded measurements);
+* :func:`robust_designs` -- on a profile that has intervals: the robust largest k_c at the
+  current b_c (eq. 9 for every device in the box) on the impedance display, or the robust
+  feasible b_c interval for the current m_c (eq. 21) on the admittance display, each with its
+  binding device, and whether the current coupling holds for the whole box
+  (:attr:`RobustDesigns.holds`, :meth:`RobustDesigns.verdict`);
+* :func:`section_measurements`, :func:`fit_curves` -- the embedded measurements and the
+  profile device's response at their frequencies, for the Bode figure.
+
+Numpy and scipy only; never imports Qt.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from analysis.identify import (
+    ChainFit,
+    Measurement,
+    OrderSelection,
+    RobustDamping,
+    RobustStiffness,
+    device_response,
+    fit_chain,
+    load_measurement,
+    make_measurement,
+    robust_feasible_damping,
+    robust_max_stiffness,
+)
+from analysis.profiles import Profile
+from analysis.profiles.identification import IdentificationSection, MeasurementData
+from analysis.study.displays import display_kind
+from analysis.study.quantities import format_number
+
+__all__ = ["BodeData", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "identify_chain", "load_measurements", "parameter_rows",
+           "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements"]
+
+Progress = Callable[[int, int], None] | None
+Cancelled = Callable[[], bool] | None
+
+
+@dataclass(frozen=True, eq=False)
+class IdentifyResult:
+    """The fit at the chosen order and the order-selection table (``orders`` may be ``None``)."""
+
+    fit: ChainFit
+    orders: OrderSelection | None
+    measurements: tuple[Measurement, ...]
+
+
+def load_measurements(paths: Sequence[str | os.PathLike], quantity: str = "actuator", boundary: str = "free",
+                      sample_time: float | None = None, delay_samples: int = 0) -> list[Measurement]:
+    """:func:`analysis.identify.load_measurement` of each file (MeasurementError names file/row/column)."""
+    return [load_measurement(p, quantity=quantity, boundary=boundary, sample_time=sample_time,
+                             delay_samples=delay_samples) for p in paths]
+
+
+def parse_fixed(items: Sequence[str]) -> dict[str, float]:
+    """``["masses[0]=0.2", ...]`` -> ``{"masses[0]": 0.2}`` (ValueError names the bad item)."""
+    out = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        try:
+            number = float(value)
+        except ValueError:
+            number = math.nan
+        if not sep or not key.strip() or not (math.isfinite(number) and number > 0):
+            raise ValueError(f"--fix {item!r}: expected KEY=VALUE with a value > 0, e.g. masses[0]=0.2")
+        out[key.strip()] = number
+    return out
+
+
+def _ground(ground_dampings: Sequence[int] | None, n: int) -> tuple[int, ...] | None:
+    if ground_dampings is None:
+        return None
+    kept = tuple(g for g in ground_dampings if 0 <= g < n)
+    return kept or None
+
+
+def _fit_or_error(measurements: Sequence[Measurement], n: int, fixed: Mapping[str, float],
+                  ground: Sequence[int] | None, kwargs: Mapping) -> tuple[ChainFit | None, str | None]:
+    try:
+        return fit_chain(measurements, n, _ground(ground, n), dict(fixed), **kwargs), None
+    except ValueError as exc:
+        return None, str(exc)
+
+
+def identify_chain(measurements: Sequence[Measurement], n_masses: int, fixed: Mapping[str, float] | None = None,
+             ground_dampings: Sequence[int] | None = None, *, max_masses: int | None = None,
+             progress: Progress = None, cancelled: Cancelled = None, **fit_kwargs) -> IdentifyResult | None:
+    """Fit ``n_masses`` (raises ValueError for unusable input) and, when ``max_masses`` is given,
+    the orders ``1..max_masses`` for the order table; ``None`` when cancelled between fits.
+
+    Fixed keys outside a smaller chain make that order an error row (``nan``), as in
+    :func:`analysis.identify.order_selection`.
+    """
+    fixed = dict(fixed or {})
+    orders = list(range(1, int(max_masses) + 1)) if max_masses else []
+    total = 1 + len([n for n in orders if n != n_masses])
+    fit = fit_chain(measurements, int(n_masses), ground_dampings, fixed, **fit_kwargs)
+    if progress:
+        progress(1, total)
+    rows: list[tuple[ChainFit | None, str | None]] = []
+    for n in orders:
+        if cancelled and cancelled():
+            return None
+        rows.append((fit, None) if n == n_masses else _fit_or_error(measurements, n, fixed, ground_dampings,
+                                                                     fit_kwargs))
+        if progress and n != n_masses:
+            progress(1 + len(rows), total)
+    table = _order_table(orders, rows) if orders else None
+    return IdentifyResult(fit, table, tuple(measurements))
+
+
+def _order_table(orders: list[int], rows: list[tuple[ChainFit | None, str | None]]) -> OrderSelection:
+    nan = math.nan
+    aic = np.array([f.aic if f else nan for f, _ in rows])
+    bic = np.array([f.bic if f else nan for f, _ in rows])
+    res = np.array([f.residual if f else nan for f, _ in rows])
+    best = int(orders[int(np.nanargmin(bic))]) if np.any(np.isfinite(bic)) else None
+    return OrderSelection(n=np.array(orders), aic=aic, bic=bic, residual=res, fits=tuple(f for f, _ in rows),
+                          errors=tuple(e for _, e in rows), best_bic=best)
+
+
+def parameter_rows(fit: ChainFit) -> list[dict]:
+    """The parameter table as plain rows: key, value, std_error, low, high, fixed, identifiable
+    (numbers as floats) plus ``text`` (the same numbers printed by :func:`format_number`)."""
+    out = []
+    for p in fit.parameters:
+        text = {name: format_number(getattr(p, name)) for name in ("value", "std_error", "low", "high")}
+        out.append({"key": p.key, "value": p.value, "std_error": p.std_error, "low": p.low, "high": p.high,
+                    "fixed": p.fixed, "identifiable": p.identifiable, "text": text})
+    return out
+
+
+def _data(m: Measurement) -> MeasurementData:
+    return MeasurementData(frequency=m.frequency, response=m.response, quantity=m.quantity, boundary=m.boundary,
+                           sample_time=m.sample_time, delay_samples=m.delay_samples, coherence=m.coherence,
+                           source=None if m.source is None else os.path.basename(m.source))
+
+
+def profile_with_fit(profile: Profile, fit: ChainFit, measurements: Sequence[Measurement] | None = None,
+                     name: str | None = None) -> Profile:
+    """``profile`` with the fitted device (its band kept) and the identification section: the 95 %
+    intervals of the free parameters and the measurements embedded."""
+    free = {k: iv for k, iv, fixed in zip(fit.keys, fit.intervals.values(), fit.fixed) if not fixed}
+    section = IdentificationSection(free, tuple(_data(m) for m in (measurements or fit.measurements)))
+    return profile.replace(device=fit.device, identification=section,
+                           **({} if name is None else {"name": name}))
+
+
+def section_measurements(section: IdentificationSection) -> list[Measurement]:
+    """The embedded measurements as :class:`~analysis.identify.Measurement` objects."""
+    return [make_measurement(m.frequency, m.response, m.quantity, m.boundary, m.sample_time, m.delay_samples,
+                             m.coherence, m.source) for m in section.measurements]
+
+
+def fit_curves(profile: Profile) -> list[tuple[Measurement, np.ndarray]]:
+    """Each embedded measurement with the profile device's response at its frequencies."""
+    if profile.identification is None:
+        return []
+    dev = profile.device
+    out = []
+    for m in section_measurements(profile.identification):
+        try:
+            model = device_response(dev, m.frequency, m.quantity, m.boundary, m.sample_time, m.delay_samples)
+        except ValueError:  # the device does not fit this measurement (e.g. a gauge beyond the chain)
+            model = np.full(m.frequency.shape, np.nan + 0j)
+        out.append((m, model))
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class RobustDesigns:
+    """Robust designs for the profile's display over its parameter box.
+
+    ``stiffness`` (impedance: eq. 9 at the current b_c) or ``damping`` (admittance: eq. 21 for
+    the current m_c) is set; ``holds`` says whether the current coupling is stable for every
+    device in the box, ``coupling`` is the current (k_c or b_c) value checked.
+    """
+
+    impedance: bool
+    intervals: dict
+    stiffness: RobustStiffness | None
+    damping: RobustDamping | None
+    coupling: float
+    holds: bool
+
+    def verdict(self) -> str:
+        """One line for the verdict: whether the current coupling holds for the whole box."""
+        n = len(self.intervals)
+        box = f"the whole box ({n} parameter interval{'s' if n != 1 else ''})"
+        if self.impedance:
+            kc = self.stiffness.kc if self.stiffness else None
+            limit = "no k_c" if kc is None else f"k_c ≤ {format_number(kc)} N/m"
+            word = "holds" if self.holds else "does NOT hold"
+            return f"k_c = {format_number(self.coupling)} N/m {word} for {box}: robust {limit}"
+        lo, hi = (self.damping.low, self.damping.high) if self.damping else (None, None)
+        limit = "no b_c" if lo is None else f"b_c in [{format_number(lo)}, {format_number(hi)}] N·s/m"
+        word = "holds" if self.holds else "does NOT hold"
+        return f"b_c = {format_number(self.coupling)} N·s/m {word} for {box}: robust {limit}"
+
+
+def robust_designs(profile: Profile, *, seed: int = 0, progress: Progress = None,
+                   cancelled: Cancelled = None) -> RobustDesigns | None:
+    """The robust design of the profile's display over ``profile.identification.intervals``;
+    ``None`` without intervals or when cancelled before the search."""
+    section = profile.identification
+    if section is None or not section.intervals or (cancelled and cancelled()):
+        return None
+    intervals = dict(section.intervals)
+    kind = display_kind(profile)
+    if kind.is_impedance:
+        rs = robust_max_stiffness(profile.device, profile.bc, intervals, seed=seed)
+        out = RobustDesigns(True, intervals, rs, None, profile.kc, rs.kc is not None and profile.kc <= rs.kc)
+    else:
+        rd = robust_feasible_damping(profile.device, profile.mc, profile.kp, profile.kd, intervals, seed=seed)
+        ok = rd.low is not None and rd.low <= profile.bc_adm <= rd.high
+        out = RobustDesigns(False, intervals, None, rd, profile.bc_adm, ok)
+    if progress:
+        progress(1, 1)
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class BodeData:
+    """Measured and model responses of several measurements, joined with a ``nan`` between them
+    (one curve each for plotting): frequency (rad/s), magnitudes, phases (degrees, unwrapped per
+    measurement), the residual ``|ln(model/measured)|`` and the coherence (``nan`` where none)."""
+
+    w: np.ndarray
+    measured_mag: np.ndarray
+    model_mag: np.ndarray
+    measured_phase: np.ndarray
+    model_phase: np.ndarray
+    residual: np.ndarray
+    coherence: np.ndarray
+
+    @property
+    def has_coherence(self) -> bool:
+        return bool(np.any(np.isfinite(self.coherence)))
+
+
+def bode_data(pairs: Sequence[tuple[Measurement, np.ndarray]]) -> BodeData:
+    """The :class:`BodeData` of ``(measurement, model response)`` pairs (see :func:`fit_curves`)."""
+    parts: list[list[np.ndarray]] = [[] for _ in range(7)]
+    for i, (m, model) in enumerate(pairs):
+        h, g = m.response, np.asarray(model, complex)
+        ph_m = np.degrees(np.unwrap(np.angle(h)))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ph_g = ph_m + np.degrees(np.angle(g / h))  # the model's phase on the measured branch
+            res = np.abs(np.log(g / h))
+        coh = m.coherence if m.coherence is not None else np.full(m.size, np.nan)
+        cols = (m.frequency, np.abs(h), np.abs(g), ph_m, ph_g, res, coh)
+        for part, col in zip(parts, cols):
+            if i:
+                part.append(np.array([np.nan]))
+            part.append(np.asarray(col, float))
+    arrays = [np.concatenate(p) if p else np.array([]) for p in parts]
+    return BodeData(*arrays)

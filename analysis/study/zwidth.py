@@ -1,0 +1,145 @@
+"""The controller as built, for a profile: the Z-width region, the optimum filter, the trials.
+
+The classic Z-width picture of Colgate & Brown ("Factors affecting the Z-width of a haptic
+display", ICRA 1994): the stable region of the virtual wall ``K + B V(z)`` in the (B, K) plane,
+computed exactly (:func:`analysis.sampled.zwidth_region`, hands-off against the god-object wall)
+with the profile's velocity filter and delays, the passive region of Colgate & Schenkel, and
+eq. (9)'s two-port limit of Adams & Hannaford built here from
+:class:`~analysis.twoport.impedance.ImpedanceDisplay` ``(device, velocity_filter=f)`` (the
+sampled layer cannot import the two-port layer, the study layer can).  The area against the
+cut-off and its maximum follow Chawda, Celik & O'Malley (ASME JDSMC 137(2), 2015)
+(:func:`analysis.sampled.optimal_filter`).
+
+The wall of the region is the impedance display's virtual coupling of the profile: B is
+``bc`` (N s/m) and K is ``kc`` (N/m), the gains :func:`analysis.sampled.critical_stiffness`
+analyses at the profile's b_c (:func:`wall_edits`).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from analysis.chain.velocity_filter import VelocityFilter
+from analysis.profiles.controller import ControllerSection
+from analysis.profiles.model import Profile
+from analysis.sampled import (
+    FilterOptimum,
+    MeasuredTrials,
+    TrialScore,
+    ZWidthRegion,
+    load_trials,
+    optimal_filter,
+    score_trials,
+)
+from analysis.sampled import zwidth_region as sampled_zwidth_region
+from analysis.study.compute import delays
+from analysis.study.displays import profile_filter
+from analysis.twoport.impedance import ImpedanceDisplay
+from analysis.twoport.results import Cancelled, Progress
+
+__all__ = ["OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "region_b", "twoport_limit", "zwidth_region",
+           "filter_optimum", "optimum_kind", "profile_trials", "trial_score", "wall_edits", "region_wall", "with_filter"]
+
+#: Number of cut-offs of the optimum curve (issue 15: 30 in <= 10 s on the worker).
+OPTIMUM_CUTOFFS = 30
+
+
+@dataclass(frozen=True)
+class ZWidthStudy:
+    """A region with the trials scored against it (``trials``/``score`` ``None`` without a file)."""
+
+    region: ZWidthRegion
+    trials: MeasuredTrials | None = None
+    score: TrialScore | None = None
+
+
+def controller_section(profile: Profile) -> ControllerSection:
+    """The profile's controller section, or the default one (backward difference, B 0.1-100)."""
+    return ControllerSection() if profile.controller is None else profile.controller
+
+
+def region_b(profile: Profile) -> np.ndarray:
+    """The region's B values (N s/m): geometric over the section's ``b_range``."""
+    sec = controller_section(profile)
+    return np.geomspace(sec.b_range[0], sec.b_range[1], sec.b_points)
+
+
+def twoport_limit(profile: Profile) -> Callable[[np.ndarray], np.ndarray]:
+    """Eq. (9)'s edge: ``b -> largest k_c`` of ``ImpedanceDisplay(device, velocity_filter=f)``
+    (NaN where eq. 9 has no feasible k_c)."""
+    disp = ImpedanceDisplay(profile.device, velocity_filter=profile_filter(profile))
+
+    def limit(b: np.ndarray) -> np.ndarray:
+        return np.asarray(disp.stiffness_chart(np.asarray(b, float)).kc, float)
+
+    return limit
+
+
+def zwidth_region(profile: Profile, *, progress: Progress | None = None,
+                  cancelled: Cancelled | None = None) -> ZWidthRegion | None:
+    """The exact (B, K) region of the profile's wall with its filter and delays, the passive
+    region and eq. (9)'s limit.  One piece: reports 0/1 and 1/1; ``None`` once cancelled."""
+    if progress is not None:
+        progress(0, 1)
+    if cancelled is not None and cancelled():
+        return None
+    d, impl = delays(profile)
+    r = sampled_zwidth_region(profile.device, region_b(profile), d, profile_filter(profile),
+                              implementation_delay=impl, twoport_limit=twoport_limit(profile))
+    if progress is not None:
+        progress(1, 1)
+    return None if cancelled is not None and cancelled() else r
+
+
+def optimum_kind(profile: Profile) -> str:
+    """The filter kind whose cut-off is optimized: the profile's, ``"lowpass1"`` for the backward difference."""
+    vf = controller_section(profile).velocity_filter
+    return "lowpass1" if vf.is_backward else vf.kind
+
+
+def filter_optimum(profile: Profile, kind: str | None = None, *, cutoffs: np.ndarray | None = None,
+                   progress: Progress | None = None, cancelled: Cancelled | None = None) -> FilterOptimum | None:
+    """The region's linear area against the cut-off (default 30 from 5 Hz to 0.9 Nyquist) and the
+    maximizing cut-off (Chawda et al.), for ``kind`` (default :func:`optimum_kind`)."""
+    d, impl = delays(profile)
+    return optimal_filter(profile.device, optimum_kind(profile) if kind is None else kind, cutoffs,
+                          b=region_b(profile), delay_samples=d, implementation_delay=impl, progress=progress,
+                          cancelled=cancelled)
+
+
+def profile_trials(profile: Profile, base: str | os.PathLike | None = None) -> MeasuredTrials | None:
+    """The trials file named by the profile's section (relative to ``base`` when given), or ``None``.
+
+    Raises :class:`~analysis.errors.ValidationError` for an unreadable or malformed file."""
+    path = controller_section(profile).trials
+    if path is None:
+        return None
+    if base is not None and not os.path.isabs(path):
+        path = os.path.join(os.fspath(base), path)
+    return load_trials(path)
+
+
+def trial_score(region: ZWidthRegion, trials: MeasuredTrials | None) -> ZWidthStudy:
+    """The region with ``trials`` scored against it (:func:`analysis.sampled.score_trials`)."""
+    if trials is None:
+        return ZWidthStudy(region)
+    return ZWidthStudy(region, trials, score_trials(region, trials))
+
+
+def wall_edits(b: float, k: float) -> dict[str, float]:
+    """The profile fields a pick at ``(B, K)`` on the region sets: the virtual coupling ``bc``, ``kc``."""
+    return {"bc": float(b), "kc": float(k)}
+
+
+def region_wall(profile: Profile) -> tuple[float, float]:
+    """Where the profile's wall sits on the region: ``(bc, kc)``."""
+    return float(profile.bc), float(profile.kc)
+
+
+def with_filter(profile: Profile, velocity_filter: VelocityFilter) -> Profile:
+    """The profile with its controller section's filter replaced (the section created if absent)."""
+    return profile.replace(controller=controller_section(profile).replace(velocity_filter=velocity_filter))

@@ -1,0 +1,129 @@
+"""``zwidth identify``: fit a chain to measurement files and write a profile (issue 14).
+
+Usage::
+
+    zwidth identify MEASUREMENT... --masses N [--fix KEY=VALUE]... [--quantity Q] [--boundary B]
+                    [--sample-time T] [--delay D] [--ground I]... [--base PROFILE] -o profile.json [--json]
+
+The written profile has the fitted device, the couplings and gains of ``--base`` (default: the
+bundled HBFD profile) and an ``identification`` section with the 95 % intervals and the
+measurements embedded.  A bad measurement file exits with 1 and the file, row and column named.
+Never imports Qt.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+__all__ = ["add_identify_parser", "run_identify", "format_parameters"]
+
+
+def add_identify_parser(sub: argparse._SubParsersAction) -> None:
+    """Add the ``identify`` subcommand to the ``zwidth`` parser."""
+    p = sub.add_parser("identify", help="fit a chain model to measured frequency responses and write a profile",
+                       description="Fit an N-mass chain to FRF or time-series CSV files (all together) and write "
+                       "a profile with the fitted device and an identification section (95 %% intervals, "
+                       "embedded measurements).")
+    p.add_argument("measurements", metavar="MEASUREMENT", nargs="+", help="FRF or time-series CSV file")
+    p.add_argument("--masses", type=int, required=True, metavar="N", help="number of masses of the chain")
+    p.add_argument("--fix", action="append", default=[], metavar="KEY=VALUE",
+                   help="fix a parameter, e.g. masses[0]=0.2 (repeatable)")
+    p.add_argument("--quantity", choices=("actuator", "handle", "gauge"), default="actuator",
+                   help="what was measured (default actuator)")
+    p.add_argument("--boundary", choices=("free", "clamped"), default="free", help="handle free or clamped")
+    p.add_argument("--sample-time", type=float, metavar="T",
+                   help="controller sample period in s (default: continuous-time measurement)")
+    p.add_argument("--delay", type=int, default=0, metavar="D", help="computation delay in samples (default 0)")
+    p.add_argument("--ground", type=int, action="append", metavar="I",
+                   help="0-based mass with a damper to ground (repeatable; default: the actuator, N-1)")
+    p.add_argument("--orders", action="store_true", help="also fit n = 1..N and print AIC/BIC/residual")
+    p.add_argument("--base", metavar="PROFILE", help="profile whose couplings and gains are kept (default: HBFD)")
+    p.add_argument("-o", "--output", required=True, metavar="FILE", help="profile JSON to write")
+    p.add_argument("--json", action="store_true", help="print the parameter table as JSON")
+
+
+def _fail(message: str, code: int = 1) -> int:
+    print(f"zwidth identify: error: {message}", file=sys.stderr)
+    return code
+
+
+def format_parameters(rows: list[dict]) -> str:
+    """The parameter table as aligned text (value, standard error, 95 % interval)."""
+    head = ("parameter", "value", "std error", "95 % low", "95 % high", "")
+    lines = [head]
+    for r in rows:
+        t = r["text"]
+        note = "fixed" if r["fixed"] else ("" if r["identifiable"] else "NOT identifiable")
+        lines.append((r["key"], t["value"], t["std_error"], t["low"], t["high"], note))
+    widths = [max(len(line[i]) for line in lines) for i in range(len(head))]
+    return "\n".join("  ".join(c.ljust(w) for c, w in zip(line, widths)).rstrip() for line in lines)
+
+
+def _base(path: str | None):
+    from analysis.profiles import load_profile
+    from analysis.resources import resource_path
+
+    return load_profile(path if path else resource_path("profiles", "hbfd.json"))
+
+
+def _report(result, rows: list[dict], out: str, as_json: bool) -> None:
+    fit = result.fit
+    orders = result.orders
+    if as_json:
+        data = {"output": out, "residual": fit.residual, "aic": fit.aic, "bic": fit.bic, "converged": fit.converged,
+                "parameters": [{k: v for k, v in r.items() if k != "text"} for r in rows],
+                "non_identifiable": list(fit.non_identifiable), "suggestions": dict(fit.suggestions),
+                "warnings": list(fit.warnings)}
+        if orders is not None:
+            data["orders"] = [{"n": int(n), "aic": float(a), "bic": float(b), "residual": float(r)}
+                              for n, a, b, r in zip(orders.n, orders.aic, orders.bic, orders.residual)]
+        from analysis.checks import jsonable
+
+        print(json.dumps(jsonable(data), indent=2))
+        return
+    print(format_parameters(rows))
+    print(f"residual (RMS, weighted log-response): {fit.residual:.4g}   AIC {fit.aic:.6g}   BIC {fit.bic:.6g}")
+    if orders is not None:
+        print("\n n   AIC            BIC            residual")
+        for n, a, b, r in zip(orders.n, orders.aic, orders.bic, orders.residual):
+            mark = "  <- lowest BIC" if orders.best_bic == n else ""
+            print(f"{int(n):2d}   {a:<13.6g}  {b:<13.6g}  {r:<10.4g}{mark}")
+    for key in fit.non_identifiable:
+        print(f"note: {key} is not identifiable from these measurements: {fit.suggestions.get(key, '')}")
+    for w in fit.warnings:
+        print(f"warning: {w}")
+    print(f"wrote {out}")
+
+
+def run_identify(args: argparse.Namespace) -> int:
+    """Fit, write the profile, print the table; 0 ok, 1 bad input or file, 2 usage error."""
+    from analysis.errors import ValidationError
+    from analysis.identify import MeasurementError
+    from analysis.profiles import ProfileError, save_profile
+    from analysis.study.identify import identify_chain, load_measurements, parameter_rows, parse_fixed, profile_with_fit
+
+    if args.masses < 1:
+        return _fail("--masses must be >= 1", 2)
+    try:
+        fixed = parse_fixed(args.fix)
+    except ValueError as err:
+        return _fail(str(err), 2)
+    try:
+        base = _base(args.base)
+        measurements = load_measurements(args.measurements, args.quantity, args.boundary, args.sample_time,
+                                         args.delay)
+        result = identify_chain(measurements, args.masses, fixed, args.ground,
+                                max_masses=args.masses if args.orders else None,
+                                sample_time=args.sample_time if args.sample_time else base.device.sample_time,
+                                band_min=base.device.band_min)
+        profile = profile_with_fit(base, result.fit, measurements, name=Path(args.output).stem)
+        save_profile(profile, args.output)
+    except (MeasurementError, ProfileError) as err:
+        return _fail(str(err))
+    except (ValidationError, ValueError) as err:
+        return _fail(str(err))
+    _report(result, parameter_rows(result.fit), args.output, args.json)
+    return 0

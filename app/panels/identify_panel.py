@@ -1,0 +1,209 @@
+"""The Identify tab's controls (issue 14): measurement files, how they were taken, the model order
+and the fixed parameters.
+
+Files are loaded when added (:meth:`IdentifyPanel.load_files`, which the Add button calls after a
+file dialog and tests call directly), each with the quantity, boundary and timing chosen at that
+moment, so that an actuator test with the handle free and a gauge test with the handle clamped can
+be fitted together.  A bad file is refused with the file, row and column named.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtWidgets import (
+    QCheckBox,
+    QComboBox,
+    QDoubleSpinBox,
+    QFileDialog,
+    QFormLayout,
+    QHBoxLayout,
+    QHeaderView,
+    QLabel,
+    QListWidget,
+    QPushButton,
+    QSpinBox,
+    QTableWidget,
+    QTableWidgetItem,
+    QVBoxLayout,
+    QWidget,
+)
+
+from analysis.identify import BOUNDARIES, QUANTITIES, Measurement, MeasurementError, parameter_keys
+from analysis.study import load_measurements
+
+__all__ = ["IdentifyPanel", "MAX_MASSES"]
+
+#: Largest chain the panel offers.
+MAX_MASSES = 8
+
+
+class IdentifyPanel(QWidget):
+    """Measurement list, settings, fixed parameters and the Fit / Use buttons."""
+
+    fitRequested = Signal()
+    useRequested = Signal()
+
+    def __init__(self, sample_time: float, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.measurements: list[Measurement] = []
+        self.files = QListWidget()
+        self.files.setMaximumHeight(80)
+        self.add_button = QPushButton("Add files…")
+        self.remove_button = QPushButton("Remove")
+        self.error = QLabel()
+        self.error.setObjectName("identifyError")
+        self.error.setWordWrap(True)
+        self.error.setStyleSheet("color: #c92a2a")
+        self.quantity = QComboBox()
+        self.quantity.addItems(list(QUANTITIES))
+        self.boundary = QComboBox()
+        self.boundary.addItems(list(BOUNDARIES))
+        self.sampled = QCheckBox("sampled, T")
+        self.sampled.setToolTip("Measured through the controller: force through a zero-order hold, sampled "
+                                "encoder, a delay of d samples (exact ZOH model); unticked: continuous-time "
+                                "(an analyser)")
+        self.sample_time = QDoubleSpinBox()
+        self.sample_time.setDecimals(4)
+        self.sample_time.setRange(0.001, 1000.0)
+        self.sample_time.setSuffix(" ms")
+        self.sample_time.setValue(sample_time * 1e3)
+        self.delay = QSpinBox()
+        self.delay.setRange(0, 10)
+        self.delay.setSuffix(" samples")
+        self.masses = QSpinBox()
+        self.masses.setRange(1, MAX_MASSES)
+        self.masses.setValue(4)
+        self.max_order = QSpinBox()
+        self.max_order.setRange(0, MAX_MASSES)
+        self.max_order.setValue(4)
+        self.max_order.setSpecialValueText("off")
+        self.fixed_table = QTableWidget(0, 3)
+        self.fixed_table.setHorizontalHeaderLabels(["parameter", "fix", "value"])
+        self.fixed_table.verticalHeader().hide()
+        self.fixed_table.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+        self.fixed_table.horizontalHeader().setStretchLastSection(True)
+        self.fixed_table.setMinimumHeight(120)
+        self.fit_button = QPushButton("Fit")
+        self.fit_button.setDefault(True)
+        self.use_button = QPushButton("Use this device")
+        self.use_button.setToolTip("Set the profile's device to the fitted one and store the intervals and "
+                                   "measurements in the profile (one undo step)")
+        self.use_button.setEnabled(False)
+        self._layout()
+        self.add_button.clicked.connect(self.choose_files)
+        self.remove_button.clicked.connect(self.remove_selected)
+        self.masses.valueChanged.connect(self._fill_fixed)
+        self.fit_button.clicked.connect(self.fitRequested)
+        self.use_button.clicked.connect(self.useRequested)
+        self._fill_fixed()
+        self._update_buttons()
+
+    def _layout(self) -> None:
+        buttons = QHBoxLayout()
+        buttons.addWidget(self.add_button)
+        buttons.addWidget(self.remove_button)
+        form = QFormLayout()
+        form.addRow("Quantity", self.quantity)
+        form.addRow("Handle", self.boundary)
+        form.addRow(self.sampled, self.sample_time)
+        form.addRow("Delay d", self.delay)
+        form.addRow("Masses n", self.masses)
+        form.addRow("Order table n = 1 …", self.max_order)
+        run = QHBoxLayout()
+        run.addWidget(self.fit_button)
+        run.addWidget(self.use_button)
+        lay = QVBoxLayout(self)
+        lay.setContentsMargins(4, 4, 4, 4)
+        title = QLabel("<b>Measurements</b> (FRF or time-series CSV; settings apply to files added next)")
+        title.setWordWrap(True)
+        lay.addWidget(title)
+        lay.addLayout(form)
+        lay.addLayout(buttons)
+        lay.addWidget(self.files)
+        lay.addWidget(self.error)
+        fixed = QLabel("<b>Fixed parameters</b> (known values, e.g. a handle mass from CAD)")
+        fixed.setWordWrap(True)
+        lay.addWidget(fixed)
+        lay.addWidget(self.fixed_table, 1)
+        lay.addLayout(run)
+
+    # -- measurements --------------------------------------------------------------------------
+    def timing(self) -> tuple[float | None, int]:
+        """(sample time in s or ``None`` for continuous, delay in samples) for the next files."""
+        if not self.sampled.isChecked():
+            return None, 0
+        return self.sample_time.value() * 1e-3, self.delay.value()
+
+    def load_files(self, paths: Sequence[str | os.PathLike]) -> list[str]:
+        """Load ``paths`` with the current settings; returns the error messages (file, row, column)."""
+        T, d = self.timing()
+        errors = []
+        for path in paths:
+            try:
+                (m,) = load_measurements([path], self.quantity.currentText(), self.boundary.currentText(), T, d)
+            except (MeasurementError, ValueError, OSError) as err:
+                errors.append(str(err))
+                continue
+            self.measurements.append(m)
+            timing = "continuous" if T is None else f"T = {T * 1e3:g} ms, d = {d}"
+            self.files.addItem(f"{os.path.basename(os.fspath(path))} — {m.quantity}, {m.boundary}, {timing}, "
+                               f"{m.size} points")
+        self.error.setText("\n".join(errors))
+        self._update_buttons()
+        return errors
+
+    def choose_files(self) -> None:
+        paths, _ = QFileDialog.getOpenFileNames(self, "Add measurements", "", "CSV files (*.csv);;All files (*)")
+        if paths:
+            self.load_files(paths)
+
+    def remove_selected(self) -> None:
+        row = self.files.currentRow()
+        if 0 <= row < len(self.measurements):
+            self.files.takeItem(row)
+            del self.measurements[row]
+        self._update_buttons()
+
+    def _update_buttons(self) -> None:
+        self.fit_button.setEnabled(bool(self.measurements))
+        self.remove_button.setEnabled(bool(self.measurements))
+
+    # -- order and fixed parameters ---------------------------------------------------------------
+    def _fill_fixed(self) -> None:
+        keys = parameter_keys(self.masses.value(), None)
+        old = self.fixed()
+        self.fixed_table.setRowCount(len(keys))
+        for r, key in enumerate(keys):
+            name = QTableWidgetItem(key)
+            name.setFlags(name.flags() & ~Qt.ItemFlag.ItemIsEditable)
+            self.fixed_table.setItem(r, 0, name)
+            check = QCheckBox()
+            check.setChecked(key in old)
+            self.fixed_table.setCellWidget(r, 1, check)
+            value = QDoubleSpinBox()
+            value.setDecimals(6)
+            value.setRange(1e-6, 1e9)
+            value.setValue(old.get(key, 1.0))
+            self.fixed_table.setCellWidget(r, 2, value)
+        self.fixed_table.resizeRowsToContents()
+
+    def set_fixed(self, key: str, value: float) -> None:
+        """Tick ``key``'s fix box and set its value."""
+        for r in range(self.fixed_table.rowCount()):
+            if self.fixed_table.item(r, 0).text() == key:
+                self.fixed_table.cellWidget(r, 1).setChecked(True)
+                self.fixed_table.cellWidget(r, 2).setValue(value)
+                return
+        raise KeyError(key)
+
+    def fixed(self) -> dict[str, float]:
+        """The ticked parameters and their values."""
+        out = {}
+        for r in range(self.fixed_table.rowCount()):
+            check, value = self.fixed_table.cellWidget(r, 1), self.fixed_table.cellWidget(r, 2)
+            if check is not None and check.isChecked():
+                out[self.fixed_table.item(r, 0).text()] = value.value()
+        return out

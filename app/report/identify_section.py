@@ -1,0 +1,138 @@
+"""The report's identification part (issue 14), when the profile has an ``identification`` section.
+
+* :func:`identification_sections` (Qt-free, called by :func:`app.report.content.gather`): the
+  measurements, the parameter table with the 95 % intervals, and the robust designs (robust
+  largest k_c at the current b_c against the nominal one, with the binding device; or the robust
+  b_c interval on the admittance display), computed by :mod:`analysis.study.identify`;
+* :func:`identify_figure` (needs Qt; the figure builders of :mod:`app.report.figures`): measured
+  against model magnitude (``identify``) and phase (``identify_phase``) of the embedded
+  measurements, the model being the profile's device.
+"""
+
+from __future__ import annotations
+
+import html
+import re
+from typing import Any
+
+from analysis.profiles.io import Profile
+from analysis.study import bode_data, fit_curves, format_number, robust_designs
+
+__all__ = ["FIGURE_KEYS", "identification_sections", "identify_figure", "parameter_label"]
+
+FIGURE_KEYS = ("identify", "identify_phase")
+_NAMES = {"masses": ("mass {}", "kg"), "stiffnesses": ("stiffness {}&ndash;{}", "N/m"),
+          "dampings": ("damping {}&ndash;{}", "N&middot;s/m"),
+          "ground_dampings": ("damping to ground at mass {}", "N&middot;s/m")}
+_KEY = re.compile(r"^(\w+)\[(\d+)\]$")
+
+
+def parameter_label(key: str) -> tuple[str, str]:
+    """``"masses[0]"`` -> ``("mass 1", "kg")`` (the report's 1-based names) and its unit."""
+    match = _KEY.match(key)
+    name, i = match.group(1), int(match.group(2))
+    text, unit = _NAMES[name]
+    return text.format(i + 1, i + 2), unit
+
+
+def _value(profile: Profile, key: str) -> float:
+    match = _KEY.match(key)
+    return float(getattr(profile.device, match.group(1))[int(match.group(2))])
+
+
+def _rows(profile: Profile, numbers: dict) -> tuple:
+    from app.report.content import Row
+
+    rows = []
+    for key, (lo, hi) in profile.identification.intervals.items():
+        label, unit = parameter_label(key)
+        value = _value(profile, key)
+        text = format_number(value)
+        numbers[f"identify.{key}"] = (value, text)
+        numbers[f"identify.{key}.low"] = (lo, format_number(lo))
+        numbers[f"identify.{key}.high"] = (hi, format_number(hi))
+        rows.append(Row(f"{label} <code>{html.escape(key)}</code>", "", text,
+                        f"{unit}, 95&nbsp;%: [{format_number(lo)}, {format_number(hi)}]"))
+    return tuple(rows)
+
+
+def _robust_rows(profile: Profile, res: dict, numbers: dict) -> tuple[tuple, str]:
+    from app.report.content import Row
+
+    rd = robust_designs(profile)
+    res["robust"] = rd
+    if rd is None:
+        return (), ""
+    rows = []
+    if rd.impedance:
+        s = rd.stiffness
+        for key, label, value in (("robust.kc", "robust largest k<sub>c</sub> (eq. 9, whole box)", s.kc),
+                                  ("robust.nominal_kc", "nominal largest k<sub>c</sub> (profile's device)",
+                                   s.nominal_kc)):
+            numbers[key] = (value, format_number(value))
+            rows.append(Row(label, "", format_number(value), "N/m"))
+        numbers["robust.bc"] = (s.bc, format_number(s.bc))
+        rows.append(Row("at coupling damping b<sub>c</sub>", "", format_number(s.bc), "N&middot;s/m"))
+        binding = s.binding
+    else:
+        d = rd.damping
+        for key, label, value in (("robust.bc_low", "robust b<sub>c</sub>, lower edge (eq. 21)", d.low),
+                                  ("robust.bc_high", "robust b<sub>c</sub>, upper edge (eq. 21)", d.high)):
+            numbers[key] = (value, format_number(value))
+            rows.append(Row(label, "", format_number(value), "N&middot;s/m"))
+        binding = {**d.low_binding}
+    for key, value in binding.items():
+        label, unit = parameter_label(key)
+        rows.append(Row(f"binding device: {label}", "", format_number(value), unit))
+    verdict = html.escape(rd.verdict())
+    cls = "ok" if rd.holds else "bad"
+    return tuple(rows), f"<b class='{cls}'>{verdict}</b>"
+
+
+def identification_sections(profile: Profile, res: dict, numbers: dict) -> list[Any]:
+    """The report's sections on the profile's identification (empty without one)."""
+    from app.report.content import Section
+
+    sec = profile.identification
+    if sec is None:
+        return []
+    res["identify_curves"] = fit_curves(profile)
+    names = ", ".join(f"{html.escape(m.source or f'measurement {i + 1}')} ({m.quantity}, handle {m.boundary}, "
+                      f"{m.frequency.size} points, {'continuous' if m.sample_time is None else 'sampled'})"
+                      for i, m in enumerate(sec.measurements))
+    par = ("The device model was identified from measured frequency responses"
+           + (f": {names}." if names else " (no measurements embedded).")
+           + " The table gives each parameter of the profile's device with its 95&nbsp;% interval "
+           "(from the Jacobian of the weighted log-response fit, or typed by the user).")
+    out = [Section("Identification", (par,), _rows(profile, numbers))]
+    rows, verdict = _robust_rows(profile, res, numbers)
+    if rows:
+        out.append(Section("Designs that hold for the whole parameter box", (
+            "The worst case over every device in the box of intervals above (screening, corners, a seeded "
+            "random sample and a bounded local search; the worst case is not always a corner).",),
+            rows, (verdict,)))
+    return out
+
+
+def identify_figure(content: Any, key: str) -> Any:
+    """The measured-against-model Bode figure (``identify`` magnitude, ``identify_phase`` phase)."""
+    from PySide6.QtCore import Qt
+
+    from app.report.figures import CurvesPlot, Figure
+
+    pairs = content.results.get("identify_curves")
+    if not pairs:
+        return None
+    data = bode_data(pairs)
+    unit = "N/N" if pairs[0][0].quantity == "gauge" else "m/N"
+    if key == "identify":
+        v = CurvesPlot("Identification: magnitude", ("ω", "rad/s"), ("|H|", unit), log_x=True, log_y=True)
+        v.add("measured", data.w, data.measured_mag, "#868e96", width=3.0)
+        v.add("model (profile's device)", data.w, data.model_mag, "#1f5fbf", style=Qt.PenStyle.DashLine)
+        cap = ("Measured frequency responses (embedded in the profile) and the response of the profile's "
+               "device at the same frequencies: magnitude.")
+        return Figure(key, "Identification fit: magnitude", cap, v)
+    v = CurvesPlot("Identification: phase", ("ω", "rad/s"), ("∠H", "°"), log_x=True)
+    v.add("measured", data.w, data.measured_phase, "#868e96", width=3.0)
+    v.add("model (profile's device)", data.w, data.model_phase, "#1f5fbf", style=Qt.PenStyle.DashLine)
+    return Figure(key, "Identification fit: phase", "Measured and model phase, unwrapped per measurement.", v)

@@ -1,0 +1,189 @@
+"""The Identify tab (issue 14): from measurements of your own device to a chain model with 95 %
+intervals, and designs that hold for every model the data allow.
+
+Left: the measurements, how they were taken, the order n, fixed parameters, Fit (on the worker,
+with progress and Cancel) and "Use this device" (the profile's device and its identification
+section in one undo step).  Right: measured against fitted Bode plots with the residual and the
+coherence, the parameter table with intervals, the order table (AIC, BIC, residual for
+n = 1..N) and the robust design over the profile's parameter box with the line that says whether
+the current coupling holds for the whole box (:func:`analysis.study.robust_designs`).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+
+from PySide6.QtCore import Qt, Signal, Slot
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QScrollArea, QTabWidget, QVBoxLayout, QWidget
+
+from analysis.study import IdentifyResult, RobustDesigns, bode_data, fit_curves, profile_with_fit
+
+from app.core import nodes_identify
+from app.core.compute_graph import ComputeGraph
+from app.core.nodes_identify import FIT_NODE, NODES, ROBUST_NODE, fit_params
+from app.panels.identify_panel import IdentifyPanel
+from app.tabs.base import AnalysisTab, AppContext
+from app.views.base import PlotView
+from app.views.bode_view import BodeView, OrderTable, ParameterTable, unit_of
+from app.widgets.node_progress import NodeProgress
+
+__all__ = ["IdentifyTab", "TAB"]
+
+
+class IdentifyTab(AnalysisTab):
+    title = "Identify"
+    order = 50
+    nodes = frozenset(NODES)
+    fitted = Signal()  # a fit result is shown
+
+    @classmethod
+    def register_nodes(cls, graph: ComputeGraph) -> None:
+        nodes_identify.register(graph)
+
+    def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
+        super().__init__(ctx, parent)
+        nodes_identify.register(ctx.graph)  # idempotent: the window registers it too
+        self.panel = IdentifyPanel(ctx.model.device.sample_time)
+        self.fit_progress = NodeProgress(ctx.graph, FIT_NODE, "Fitting")
+        self.robust_progress = NodeProgress(ctx.graph, ROBUST_NODE, "Robust design")
+        self.bode = BodeView()
+        self.parameters = ParameterTable()
+        self.orders = OrderTable()
+        self.summary = QLabel("Load one or more measurements, choose n and press Fit.")
+        self.summary.setObjectName("identifySummary")
+        self.summary.setWordWrap(True)
+        self.summary.setMinimumWidth(0)
+        self.robust = QLabel()
+        self.robust.setObjectName("robustVerdict")
+        self.robust.setWordWrap(True)
+        self.robust.setTextFormat(Qt.TextFormat.RichText)
+        self.result: IdentifyResult | None = None
+        self._run = 0
+        self._layout()
+        self.panel.fitRequested.connect(self.fit)
+        self.panel.useRequested.connect(self.use_device)
+        self.fit_progress.rerun.connect(lambda _name: self.fit())
+        self.robust_progress.rerun.connect(lambda _name: ctx.graph.request(ROBUST_NODE))
+        ctx.graph.ready.connect(self._on_ready)
+
+    def _layout(self) -> None:
+        left = QWidget()
+        col = QVBoxLayout(left)
+        col.setContentsMargins(0, 0, 0, 0)
+        col.addWidget(self.panel, 1)
+        col.addWidget(self.fit_progress)
+        col.addWidget(self.summary)
+        scroll = QScrollArea()
+        scroll.setWidget(left)
+        scroll.setWidgetResizable(True)
+        scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        scroll.setMinimumWidth(300)
+        scroll.setMaximumWidth(340)
+        tables = QTabWidget()
+        tables.addTab(self.parameters, "Parameters (95 % intervals)")
+        tables.addTab(self.orders, "Model order")
+        self.tables = tables
+        corner = QWidget()
+        clay = QVBoxLayout(corner)
+        clay.setContentsMargins(0, 0, 0, 0)
+        clay.addWidget(self.robust)
+        clay.addWidget(self.robust_progress)
+        clay.addWidget(tables, 1)
+        self.bode.set_corner(corner)
+        lay = QHBoxLayout(self)
+        lay.setContentsMargins(4, 4, 4, 4)
+        lay.addWidget(scroll)
+        lay.addWidget(self.bode, 1)
+
+    def plot_views(self) -> list[PlotView]:
+        return self.bode.plot_views()
+
+    # -- fitting ---------------------------------------------------------------------------------
+    def load_files(self, paths: Sequence[str | os.PathLike]) -> list[str]:
+        """Load measurement files (what the Add button does after its file dialog)."""
+        return self.panel.load_files(paths)
+
+    @Slot()
+    def fit(self) -> None:
+        """Fit the loaded measurements on the worker (the result arrives by ``graph.ready``)."""
+        p = self.panel
+        if not p.measurements:
+            return
+        self._run += 1
+        n = p.masses.value()
+        top = p.max_order.value() or None
+        sampled = [m.sample_time for m in p.measurements if m.sample_time is not None]
+        T = sampled[0] if sampled else self.ctx.model.device.sample_time
+        params = fit_params(self._run, p.measurements, n, p.fixed(), None, max(top, n) if top else None, T,
+                            self.ctx.model.device.band_min)
+        self.ctx.graph.set_params(FIT_NODE, **params)
+        self.summary.setText(f"Fitting {n} masses to {len(p.measurements)} measurement(s)…")
+        self.ctx.graph.request(FIT_NODE)
+
+    @Slot(str)
+    def _on_ready(self, name: str) -> None:
+        if name == FIT_NODE:
+            res = self.ctx.graph.result(FIT_NODE)
+            if res is not None:
+                self.show_result(res)
+        elif name == ROBUST_NODE and self.isVisible():
+            self.show_robust(self.ctx.graph.result(ROBUST_NODE)[0])
+
+    def show_result(self, res: IdentifyResult) -> None:
+        """Draw a fit: Bode plots, parameter and order tables, notes."""
+        self.result = res
+        fit = res.fit
+        self.bode.update_data(bode_data(list(zip(res.measurements, fit.responses))),
+                              unit_of(res.measurements[0].quantity))
+        self.parameters.show_fit(fit)
+        self.orders.show_orders(res.orders)
+        notes = [f"Residual {fit.residual:.3g} (RMS of the weighted log-response), AIC {fit.aic:.6g}, "
+                 f"BIC {fit.bic:.6g}" + ("" if fit.converged else " — did NOT converge")]
+        notes += [f"{k} is not identifiable: {fit.suggestions.get(k, '')}" for k in fit.non_identifiable]
+        notes += list(fit.warnings)
+        self.summary.setText("\n".join(notes))
+        self.panel.use_button.setEnabled(True)
+        self.fitted.emit()
+
+    @Slot()
+    def use_device(self) -> str | None:
+        """The profile's device := the fitted one, with the identification section (one undo step)."""
+        if self.result is None:
+            return "no fit"
+        new = profile_with_fit(self.ctx.model.profile, self.result.fit, self.result.measurements)
+        return self.ctx.editor.edit_many({"device": new.device, "identification": new.identification},
+                                         "Use identified device")
+
+    # -- robust designs ---------------------------------------------------------------------------
+    def show_robust(self, designs: RobustDesigns | None) -> None:
+        if designs is None:
+            self.robust.setText("No parameter intervals in the profile: fit and press <i>Use this device</i> "
+                                "to get robust designs.")
+            return
+        color = "#237032" if designs.holds else "#c92a2a"
+        extra = ""
+        if designs.stiffness is not None and designs.stiffness.kc is not None:
+            b = ", ".join(f"{k} = {v:.6g}" for k, v in designs.stiffness.binding.items())
+            nominal = designs.stiffness.nominal_kc
+            extra = (f"<br>Robust largest k<sub>c</sub> at b<sub>c</sub> = {designs.stiffness.bc:g} N·s/m: "
+                     f"{designs.stiffness.kc:.6g} N/m (nominal {nominal:.6g} N/m); binding device: {b}")
+        elif designs.damping is not None and designs.damping.low is not None:
+            extra = (f"<br>Robust b<sub>c</sub> interval for m<sub>c</sub> = {designs.damping.mc:g} kg: "
+                     f"[{designs.damping.low:.6g}, {designs.damping.high:.6g}] N·s/m")
+        self.robust.setText(f"<b style='color:{color}'>{designs.verdict()}</b>{extra}")
+
+    def refresh(self) -> None:
+        graph = self.ctx.graph
+        out = graph.request(ROBUST_NODE)
+        if out is not None and graph.is_fresh(ROBUST_NODE):
+            self.show_robust(out[0])
+        if self.result is None:
+            pairs = fit_curves(self.ctx.model.profile)  # the profile's embedded measurements, if any
+            if pairs:
+                self.bode.update_data(bode_data(pairs), unit_of(pairs[0][0].quantity))
+        self.refreshes += 1
+        self.stale = False
+
+
+TAB = IdentifyTab

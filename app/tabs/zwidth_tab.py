@@ -1,0 +1,291 @@
+"""The Z-width tab: the controller as built (issue 15).
+
+* the (B, K) region of the virtual wall with the passive region, eq. (9)'s limit and the
+  imported hardware trials (Colgate & Brown, ICRA 1994) -- a click sets the wall ``(b_c, k_c)``;
+* the region's area against the velocity filter's cut-off, with the optimum marked (Chawda,
+  Celik & O'Malley 2015).
+
+Both are asynchronous graph nodes (:mod:`app.core.nodes_zwidth`) on the worker, with progress and
+Cancel.  The velocity filter is edited in the parameter panel
+(:class:`~app.panels.filter_panel.FilterPanel`); the B range and the trials file are the profile's
+``controller`` section too, edited here through undo commands.  This tab computes nothing itself.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Hashable
+from typing import Any
+
+from PySide6.QtCore import Qt, Slot
+from PySide6.QtWidgets import (
+    QFileDialog,
+    QFormLayout,
+    QGroupBox,
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QSplitter,
+    QVBoxLayout,
+    QWidget,
+)
+
+from analysis import ValidationError
+from analysis.chain.velocity_filter import VelocityFilter
+from analysis.sampled import load_trials
+from analysis.study import controller_section, trial_score, wall_edits, region_wall
+
+from app.core import nodes_zwidth
+from app.core.compute_graph import ComputeGraph
+from app.core.nodes_zwidth import OPTIMUM_NODE, REGION_NODE, TRIALS_NODE, ZWIDTH_NODES
+from app.tabs.base import AnalysisTab, AppContext
+from app.views.base import PlotView
+from app.views.filter_optimum_view import FilterOptimumView
+from app.views.zwidth_region_view import ZWidthRegionView
+from app.widgets.colors import ERROR_STYLE
+from app.widgets.node_progress import NodeProgress
+from app.widgets.sci_spin_box import SciSpinBox
+from app.widgets.section_binding import SectionBinding
+from app.widgets.task_progress import TASK_TITLES
+
+__all__ = ["ZWidthTab", "TAB"]
+
+TITLES = {REGION_NODE: "Z-width region", OPTIMUM_NODE: "Optimum filter cut-off"}
+SHORT_TITLES = {REGION_NODE: "Z-width region", OPTIMUM_NODE: "Optimum cut-off"}
+
+
+class ZWidthTab(AnalysisTab):
+    title = "Z-width"
+    order = 35
+    nodes = frozenset({*ZWIDTH_NODES, TRIALS_NODE})
+
+    @classmethod
+    def register_nodes(cls, graph: ComputeGraph) -> None:
+        nodes_zwidth.register(graph)
+        for name in ZWIDTH_NODES:
+            TASK_TITLES.setdefault(name, SHORT_TITLES[name])  # the status bar's label is narrow
+
+    def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
+        super().__init__(ctx, parent)
+        self._held: dict[str, Hashable] = {}
+        self._errors: dict[str, str] = {}
+        self.section = SectionBinding(ctx.model, ctx.editor, "controller", controller_section, "Z-width")
+        self.region_view = ZWidthRegionView()
+        self.region_view.pointPicked.connect(self.set_wall)
+        self.optimum_view = FilterOptimumView()
+        self.progress = {name: NodeProgress(ctx.graph, name, TITLES[name]) for name in ZWIDTH_NODES}
+        for w in self.progress.values():
+            w.rerun.connect(self.run_again)
+        split = QSplitter(Qt.Orientation.Horizontal)
+        split.addWidget(self._controls())
+        right = QSplitter(Qt.Orientation.Vertical)
+        right.addWidget(_column(self.region_view, self.progress[REGION_NODE]))
+        right.addWidget(_column(self.optimum_view, self.progress[OPTIMUM_NODE]))
+        right.setSizes([62, 38])
+        right.setChildrenCollapsible(False)
+        split.addWidget(right)
+        split.setStretchFactor(1, 1)
+        split.setChildrenCollapsible(False)
+        lay = QVBoxLayout(self)
+        lay.setContentsMargins(4, 2, 4, 4)
+        lay.addWidget(split)
+        ctx.graph.ready.connect(self._on_ready)
+        ctx.graph.cancelled.connect(self._on_cancelled)
+        ctx.graph.failed.connect(self._on_failed)
+
+    def _controls(self) -> QWidget:
+        box = QGroupBox("Region and trials")
+        form = QFormLayout(box)
+        self.b_min, self.b_max = SciSpinBox(suffix=" N·s/m"), SciSpinBox(suffix=" N·s/m")
+        for f in (self.b_min, self.b_max):
+            f.setMaximumWidth(130)
+            f.editingFinished.connect(self._on_b_range)
+        form.addRow("B from", self.b_min)
+        form.addRow("B to", self.b_max)
+        self.import_button = QPushButton("Import trials…")
+        self.import_button.setToolTip("A CSV with columns b (N s/m), k (N/m), stable (1/0): hardware trials")
+        self.import_button.clicked.connect(self._on_import)
+        self.clear_button = QPushButton("Clear")
+        self.clear_button.clicked.connect(self.clear_trials)
+        row = QHBoxLayout()
+        row.addWidget(self.import_button)
+        row.addWidget(self.clear_button)
+        form.addRow(row)
+        self.trials_label = QLabel("No trials imported.")
+        self.trials_label.setWordWrap(True)
+        self.trials_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        form.addRow(self.trials_label)
+        self.apply_button = QPushButton("Use the optimum cut-off")
+        self.apply_button.setToolTip("Set the velocity filter to the cut-off that maximizes the area")
+        self.apply_button.clicked.connect(self.apply_optimum)
+        self.apply_button.setEnabled(False)
+        form.addRow(self.apply_button)
+        self.error = QLabel("")
+        self.error.setStyleSheet(ERROR_STYLE)
+        self.error.setWordWrap(True)
+        self.error.hide()
+        form.addRow(self.error)
+        self.hint = QLabel("Click the region chart to set the virtual wall (b<sub>c</sub>, k<sub>c</sub>). "
+                           "The velocity filter is in the parameter panel.")
+        self.hint.setWordWrap(True)
+        form.addRow(self.hint)
+        box.setMinimumWidth(230)
+        box.setMaximumWidth(320)
+        return box
+
+    # -- edits (undo commands) -------------------------------------------------------------------------
+    def _refuse(self, reason: str | None) -> str | None:
+        self.error.setText(f"refused: {reason}" if reason else "")
+        self.error.setVisible(bool(reason))
+        return reason
+
+    @Slot(float, float)
+    def set_wall(self, b: float, k: float) -> str | None:
+        """Set the virtual wall (the impedance coupling ``b_c``, ``k_c``) to ``(B, K)``: one undo step."""
+        return self._refuse(self.ctx.editor.edit_many(wall_edits(b, k), "Set wall from the Z-width region"))
+
+    def import_trials(self, path: str | os.PathLike) -> str | None:
+        """Read a trials CSV (checked now) and store its path in the profile; returns a refusal."""
+        try:
+            load_trials(path)
+        except ValidationError as err:
+            return self._refuse(str(err))  # names the file, the line and the column
+        return self._refuse(self.section.write("trials", os.fspath(path), "trials file"))
+
+    @Slot()
+    def clear_trials(self) -> str | None:
+        if controller_section(self.ctx.model.profile).trials is None:
+            return None
+        return self._refuse(self.section.write("trials", None, "trials file"))
+
+    def set_b_range(self, lo: float, hi: float) -> str | None:
+        """Change the region's B range (N s/m); returns a refusal."""
+        return self._refuse(self.section.write("b_range", (lo, hi), "B range"))
+
+    @Slot()
+    def apply_optimum(self) -> str | None:
+        """Set the velocity filter to the optimum's kind and cut-off (one undo step)."""
+        opt = self.ctx.graph.result(OPTIMUM_NODE)
+        if opt is None:
+            return None
+        return self._refuse(self.section.write("velocity_filter", VelocityFilter(opt.kind, opt.cutoff), "optimum filter"))
+
+    @Slot()
+    def _on_import(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(self, "Import trials", "", "CSV files (*.csv);;All files (*)")
+        if path:
+            self.import_trials(path)
+
+    @Slot()
+    def _on_b_range(self) -> None:
+        self.set_b_range(self.b_min.value(), self.b_max.value())
+
+    # -- pulling ------------------------------------------------------------------------------------------
+    def _pull(self, name: str) -> Any:
+        g = self.ctx.graph
+        held = self._held.get(name)
+        if held is not None:
+            if held == g.key_of(name):
+                return g.result(name)
+            del self._held[name]
+            self._errors.pop(name, None)
+        return g.request(name)
+
+    def _busy(self, name: str) -> bool:
+        return not self.ctx.graph.is_fresh(name) and name not in self._held
+
+    def _trials(self) -> Any:
+        try:
+            return self.ctx.graph.get(TRIALS_NODE)
+        except (ValidationError, OSError) as err:
+            self._errors[TRIALS_NODE] = f"trials: {err}"
+            return None
+
+    def refresh(self) -> None:
+        p = self.ctx.model.profile
+        sec = controller_section(p)
+        for f, v in ((self.b_min, sec.b_range[0]), (self.b_max, sec.b_range[1])):
+            f.blockSignals(True)
+            f.setValue(v)
+            f.blockSignals(False)
+        self._errors.pop(TRIALS_NODE, None)
+        region, opt = self._pull(REGION_NODE), self._pull(OPTIMUM_NODE)
+        trials = self._trials()
+        study = trial_score(region, trials) if region is not None else None
+        if self.region_view.region is not region or self.region_view.trials is not trials:
+            self.region_view.update_region(region, trials, None if study is None else study.score)
+        b, k = region_wall(p)
+        self.region_view.update_point(b, k, None if region is None else region.stable(b, k))
+        self.region_view.set_busy(self._busy(REGION_NODE))
+        if self.optimum_view.optimum is not opt:
+            self.optimum_view.update_optimum(opt)
+        self.optimum_view.update_filter(sec.velocity_filter)
+        self.optimum_view.set_busy(self._busy(OPTIMUM_NODE))
+        self.apply_button.setEnabled(opt is not None)
+        self._show_trials(trials, study)
+        self.region_view.set_warning([e for n, e in self._errors.items() if n != OPTIMUM_NODE])
+        if OPTIMUM_NODE in self._errors:
+            self.optimum_view.set_warning([self._errors[OPTIMUM_NODE]])
+        self.refreshes += 1
+        self.stale = False
+
+    def _show_trials(self, trials: Any, study: Any) -> None:
+        if trials is None:
+            self.trials_label.setText("No trials imported.")
+        elif study is None or study.score is None:
+            self.trials_label.setText(f"{len(trials)} trials from {os.path.basename(trials.path)}")
+        else:
+            s = study.score
+            lines = s.describe(trials)
+            text = (f"{len(trials)} trials from {os.path.basename(trials.path)}: {s.wrong_count} of {s.scored} "
+                    f"predicted wrong" + (f", {s.outside.size} outside the B range" if s.outside.size else ""))
+            self.trials_label.setText(text + ("\n" + "\n".join(lines[:8]) if lines else "")
+                                      + ("\n…" if len(lines) > 8 else ""))
+
+    # -- worker reports -----------------------------------------------------------------------------------
+    @Slot(str)
+    def _on_ready(self, name: str) -> None:
+        if name in ZWIDTH_NODES and self.isVisible():
+            self.refresh()
+
+    @Slot(str)
+    def _on_cancelled(self, name: str) -> None:
+        if name in ZWIDTH_NODES:
+            self._held[name] = self.ctx.graph.key_of(name)
+            if self.isVisible():
+                self.refresh()
+
+    @Slot(str, str)
+    def _on_failed(self, name: str, message: str) -> None:
+        if name in ZWIDTH_NODES:
+            self._held[name] = self.ctx.graph.key_of(name)
+            self._errors[name] = f"{TITLES[name]} failed: {message}"
+            if self.isVisible():
+                self.refresh()
+
+    @Slot(str)
+    def run_again(self, name: str) -> None:
+        """Restart a cancelled (or failed) computation."""
+        self._held.pop(name, None)
+        self._errors.pop(name, None)
+        self.progress[name].hide()
+        if self.isVisible():
+            self.refresh()
+        else:
+            self.stale = True
+
+    def plot_views(self) -> list[PlotView]:
+        return [self.region_view, self.optimum_view]
+
+
+def _column(*widgets: QWidget) -> QWidget:
+    w = QWidget()
+    lay = QVBoxLayout(w)
+    lay.setContentsMargins(0, 0, 0, 0)
+    lay.setSpacing(2)
+    for x in widgets:
+        lay.addWidget(x, 1 if isinstance(x, PlotView) else 0)
+    return w
+
+
+TAB = ZWidthTab

@@ -1,0 +1,148 @@
+"""The Identify tab (issue 14): load measurement files, fit on the worker, show the fit, and
+"Use this device" as one undo step that restores the old device exactly."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from analysis.identify import device_response
+from analysis.profiles import profile_from_dict, profile_to_dict
+from analysis.profiles.identification import IdentificationSection
+from analysis.study import robust_designs
+from app.core.nodes_identify import FIT_NODE, ROBUST_NODE
+from app.tabs.identify_tab import IdentifyTab
+
+
+def write_frf(path: Path, device, quantity: str = "actuator", boundary: str = "free", points: int = 400) -> Path:
+    T = device.sample_time
+    w = np.logspace(0, np.log10(0.95 * np.pi / T), points)
+    h = device_response(device, w, quantity, boundary, T, 0)
+    coh = np.clip(1 - 0.02 * np.log10(w), 0, 1)
+    rows = [f"{float(a)!r},{float(b.real)!r},{float(b.imag)!r},{float(c)!r}" for a, b, c in zip(w, h, coh)]
+    path.write_text("frequency_rad_s,real,imag,coherence\n" + "\n".join(rows) + "\n")
+    return path
+
+
+def show(win, qtbot) -> IdentifyTab:
+    tab = win.tab(IdentifyTab)
+    win.tabs.setCurrentWidget(tab)
+    qtbot.waitUntil(lambda: not tab.stale and tab.refreshes > 0, timeout=10000)
+    return tab
+
+
+def fit(tab: IdentifyTab, qtbot, win) -> None:
+    with qtbot.waitSignal(win.graph.ready, timeout=60000, check_params_cb=lambda name: name == FIT_NODE):
+        tab.panel.fit_button.click()
+    qtbot.waitUntil(lambda: tab.result is not None, timeout=5000)
+
+
+def test_load_fit_use_and_undo(win, qtbot, tmp_path):
+    tab = show(win, qtbot)
+    old = win.model.profile
+    truth = old.device
+    path = write_frf(tmp_path / "actuator.csv", truth)
+    assert tab.load_files([path]) == []
+    assert tab.panel.measurements[0].sample_time is None  # continuous by default: remove, reload sampled
+    tab.panel.files.setCurrentRow(0)
+    tab.panel.remove_selected()
+    assert tab.panel.measurements == [] and not tab.panel.fit_button.isEnabled()
+    tab.panel.sampled.setChecked(True)
+    assert tab.load_files([path]) == []
+    assert tab.panel.measurements[0].sample_time == pytest.approx(truth.sample_time)
+    tab.panel.max_order.setValue(0)  # the chosen order only
+    fit(tab, qtbot, win)
+    f = tab.result.fit
+    np.testing.assert_allclose(f.device.masses, truth.masses, rtol=1e-6)
+    np.testing.assert_allclose(f.device.stiffnesses, truth.stiffnesses, rtol=1e-6)
+    # the parameter table shows the fitted numbers; the Bode plot draws the fitted response
+    cells = {row[0]: row for row in tab.parameters.texts()}
+    assert cells["masses[1]"][1] == "2.3" and cells["stiffnesses[2]"][1] == "874000"
+    x, y = tab.bode.magnitude.data("fitted")
+    assert x.size == 400 and np.allclose(y, np.abs(f.responses[0]), rtol=1e-12)
+    xm, ym = tab.bode.magnitude.data("measured")
+    assert np.max(np.abs(y / ym - 1)) < 1e-6
+    assert tab.bode.residual.data("coherence")[1].size == 400
+    # Use this device: one undo step; undo restores the old device exactly
+    depth = win.undo_stack.count()
+    assert tab.panel.use_button.isEnabled()
+    tab.panel.use_button.click()
+    assert win.undo_stack.count() == depth + 1
+    now = win.model.profile
+    assert now.identification is not None and len(now.identification.intervals) == 11
+    np.testing.assert_allclose(now.device.masses, truth.masses, rtol=1e-6)
+    assert profile_from_dict(profile_to_dict(now)) == now  # the profile with the section saves and loads
+    win.undo_stack.undo()
+    assert win.model.profile.device == old.device and win.model.profile.identification is None
+    assert np.array_equal(win.model.profile.device.dampings, old.device.dampings)
+    assert win.model.profile == old
+
+
+def test_order_table_and_bad_file(win, qtbot, tmp_path):
+    tab = show(win, qtbot)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("frequency_hz,real,imag\n1,1,0\n2,oops,0\n")
+    errors = tab.load_files([bad])
+    assert len(errors) == 1 and str(bad) in errors[0] and "line 3" in errors[0] and "'real'" in errors[0]
+    assert str(bad) in tab.panel.error.text() and not tab.panel.fit_button.isEnabled()
+    tab.panel.sampled.setChecked(True)
+    tab.load_files([write_frf(tmp_path / "a.csv", win.model.device, points=200)])
+    tab.panel.masses.setValue(3)
+    tab.panel.max_order.setValue(3)
+    fit(tab, qtbot, win)
+    orders = tab.result.orders
+    assert list(orders.n) == [1, 2, 3] and tab.orders.rowCount() == 3
+    texts = tab.orders.texts()
+    assert [row[0] for row in texts] == ["1", "2", "3"]
+    assert tab.orders.best_row() == list(orders.n).index(orders.best_bic)
+    assert orders.residual[0] > orders.residual[2]  # a 3-mass chain fits a 4-mass device better than 1 mass
+
+
+def test_robust_verdict_for_the_seed_case(win, qtbot):
+    tab = show(win, qtbot)
+    p = win.model.profile
+    section = IdentificationSection({"ground_dampings[3]": (1.2, 5.0)})
+    with qtbot.waitSignal(win.graph.ready, timeout=60000, check_params_cb=lambda name: name == ROBUST_NODE):
+        win.editor.edit_many({"identification": section}, "Set intervals")
+        tab.refresh()
+    qtbot.waitUntil(lambda: "hold" in tab.robust.text(), timeout=5000)
+    expected = robust_designs(p.replace(identification=section))
+    assert expected.stiffness.kc == pytest.approx(49.15e3, rel=1e-3)
+    assert "does NOT hold" in tab.robust.text() and f"{expected.stiffness.kc:.6g} N/m" in tab.robust.text()
+    assert "nominal 117118" in tab.robust.text()
+
+
+def test_screenshots(win, qtbot, tmp_path, screenshot):
+    tab = show(win, qtbot)
+    tab.panel.sampled.setChecked(True)
+    tab.load_files([write_frf(tmp_path / "a.csv", win.model.device)])
+    fit(tab, qtbot, win)
+    for w, h in ((1280, 800), (1600, 1000)):
+        win.resize(w, h)
+        qtbot.wait(100)
+        screenshot(win, f"tab_identify_{w}", tab.plot_views())
+
+
+def test_robust_design_action_and_verdict_line(win, qtbot):
+    acts = win.robust_actions
+    assert not acts.kc_action.isEnabled() and not acts.bc_action.isEnabled()  # no box: not offered
+    assert win.verdict.robust.isHidden()
+    section = IdentificationSection({"ground_dampings[3]": (1.2, 5.0)})
+    win.editor.edit_many({"identification": section}, "Set intervals")
+    assert acts.kc_action.isEnabled() and not acts.bc_action.isEnabled()
+    qtbot.waitUntil(lambda: not win.verdict.robust.isHidden(), timeout=30000)
+    assert "k_c = 50000 N/m does NOT hold for the whole box" in win.verdict.robust.text()
+    depth = win.undo_stack.count()
+    acts.kc_action.trigger()
+    qtbot.waitUntil(lambda: win.model.profile.kc != 50000.0, timeout=30000)
+    assert win.model.profile.kc == pytest.approx(49.15e3, rel=1e-3)
+    assert win.undo_stack.count() == depth + 1
+    qtbot.waitUntil(lambda: "holds for the whole box" in win.verdict.robust.text()
+                    and "NOT" not in win.verdict.robust.text(), timeout=30000)
+    win.undo_stack.undo()
+    assert win.model.profile.kc == 50000.0
+    win.undo_stack.undo()
+    assert win.model.profile.identification is None
+    qtbot.waitUntil(lambda: win.verdict.robust.isHidden(), timeout=5000)

@@ -1,0 +1,89 @@
+"""``zwidth export-plot --plot zwidth-region|filter-optimum`` and the report's Z-width part (issue 15)."""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from analysis.profiles import ControllerSection, bundled_profiles, load_profile, save_profile
+from analysis.sampled import VelocityFilter, load_trials, score_trials
+from analysis import study
+
+ROOT = Path(__file__).resolve().parents[1]
+F = VelocityFilter("lowpass1", 2 * math.pi * 60)
+
+
+def _run(*argv: str, timeout: float = 300) -> subprocess.CompletedProcess:
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    env.pop("QT_QPA_PLATFORM", None)  # the command goes headless by itself
+    env.pop("DISPLAY", None)
+    env.pop("WAYLAND_DISPLAY", None)
+    return subprocess.run([sys.executable, "-m", "app.cli", *argv], cwd=ROOT, env=env, capture_output=True,
+                          text=True, timeout=timeout)
+
+
+@pytest.fixture(scope="module")
+def profile_file(tmp_path_factory):
+    d = tmp_path_factory.mktemp("zw")
+    trials = d / "trials.csv"
+    trials.write_text("b,k,stable\n1,5000,1\n1,900000,1\n10,8000,0\n30,20000,1\n")
+    p = load_profile(bundled_profiles()["hbfd"])
+    p = p.replace(controller=ControllerSection(F, (0.5, 50.0), 12, str(trials)))
+    save_profile(p, d / "p.json")
+    return d / "p.json"
+
+
+def _csv(path: Path) -> tuple[list[str], list[list[float]]]:
+    rows = [r for r in csv.reader(path.read_text().splitlines()) if r and not r[0].startswith("#")]
+    return rows[0], [[float(x) if x else math.nan for x in r] for r in rows[1:]]
+
+
+def test_export_region_csv_has_the_region_in_the_header_units(profile_file, tmp_path):
+    out = tmp_path / "region.csv"
+    proc = _run("export-plot", str(profile_file), "--plot", "zwidth-region", "-o", str(out))
+    assert proc.returncode == 0, proc.stderr
+    header, rows = _csv(out)
+    assert header[0].endswith(": B (N s/m)") and header[1].endswith(": K (N/m)")
+    assert header[0].startswith("exact largest stable K") and "first-order low-pass at 60 Hz" in header[0]
+    assert any(h.startswith("two-port limit K (eq. 9)") for h in header)
+    p = load_profile(profile_file)
+    r = study.zwidth_region(p)
+    data = np.array([row[:2] for row in rows[:12]])
+    np.testing.assert_allclose(data[:, 0], r.b, rtol=1e-12)
+    np.testing.assert_allclose(data[:, 1], r.k_max, rtol=1e-12)
+    text = out.read_text()
+    wrong = score_trials(r, load_trials(p.controller.trials)).wrong_count
+    assert f"{wrong} of 4 predicted wrong" in text
+
+
+def test_export_filter_optimum_csv(profile_file, tmp_path):
+    out = tmp_path / "opt.csv"
+    proc = _run("export-plot", str(profile_file), "--plot", "filter-optimum", "-o", str(out))
+    assert proc.returncode == 0, proc.stderr
+    header, rows = _csv(out)
+    assert header[0].endswith(": cut-off (Hz)") and header[1].endswith(": area (N^2 s/m^2)")
+    o = study.filter_optimum(load_profile(profile_file))
+    got = np.array([row[:2] for row in rows if not math.isnan(row[0])][:o.cutoffs.size])
+    np.testing.assert_allclose(got[:, 0], o.cutoffs / (2 * math.pi), rtol=1e-12)
+    np.testing.assert_allclose(got[:, 1], o.areas, rtol=1e-12)
+    assert header[2].startswith("optimum") and rows[0][2] == pytest.approx(o.cutoff / (2 * math.pi), rel=1e-12)
+
+
+def test_report_has_the_zwidth_section_only_with_the_controller_section(profile_file):
+    from app.report.content import gather
+
+    p = load_profile(profile_file)
+    c = gather(p, sampled=False)
+    r = study.zwidth_region(p)
+    assert c.numbers["zwidth.area_linear"][0] == r.area_linear
+    assert c.numbers["zwidth.trials_wrong"][0] == score_trials(r, load_trials(p.controller.trials)).wrong_count
+    assert any(s.title.startswith("Controller as built") for s in c.sections)
+    plain = gather(load_profile(bundled_profiles()["hbfd"]), sampled=False)
+    assert "zwidth.area_linear" not in plain.numbers and "zwidth_region" not in plain.results
