@@ -73,7 +73,7 @@ def _at_bc_node(name: str, func: Callable[[Any, float], Any]) -> Node:
 def register(graph: ComputeGraph) -> None:
     """Add the wall controller's nodes to ``graph``."""
     graph.add(Node("wall_design", _INPUTS, _design_key, lambda p, _: wall_design(p)))
-    graph.add(Node("wall_tradeoff", _INPUTS, _design_key, _tradeoff, asynchronous=True))
+    graph.add(Node("wall_tradeoff", _INPUTS, _design_key, _tradeoff, asynchronous=True, live=False))
     graph.add(_at_bc_node("wall_point", wall_point))
     graph.add(_at_bc_node("wall_step", wall_step))
     graph.add(_at_bc_node("wall_admittance", wall_admittances))

@@ -11,6 +11,8 @@ from app.views.base import PlotView
 from app.widgets.colors import CURSOR_COLORS
 from app.views.design_chart import DesignChart
 from app.tabs.base import AnalysisTab, AppContext
+from analysis.study.citations import ADAMS
+from app.widgets.citation_note import CitationNote
 
 __all__ = ["DesignTab", "TAB"]
 
@@ -32,6 +34,7 @@ class DesignTab(AnalysisTab):
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addWidget(self.chart, 1)
         lay.addWidget(hint)
+        lay.addWidget(CitationNote(ADAMS))  # the full citation of the tab's equation numbers
         self.chart.pointPicked.connect(self._on_pick)
         ctx.graph.ready.connect(self._on_ready)
 

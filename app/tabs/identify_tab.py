@@ -27,6 +27,8 @@ from app.tabs.base import AnalysisTab, AppContext
 from app.views.base import PlotView
 from app.views.bode_view import BodeView, OrderTable, ParameterTable, unit_of
 from app.widgets.node_progress import NodeProgress
+from analysis.study.citations import ADAMS
+from app.widgets.citation_note import CitationNote
 
 __all__ = ["IdentifyTab", "TAB"]
 
@@ -90,6 +92,7 @@ class IdentifyTab(AnalysisTab):
         clay.addWidget(self.robust)
         clay.addWidget(self.robust_progress)
         clay.addWidget(tables, 1)
+        clay.addWidget(CitationNote(ADAMS))  # the full citation of the tab's equation numbers
         self.bode.set_corner(corner)
         lay = QHBoxLayout(self)
         lay.setContentsMargins(4, 4, 4, 4)

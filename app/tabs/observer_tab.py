@@ -23,6 +23,8 @@ from app.panels.observer_panel import ObserverPanel
 from app.views.base import PlotView, fmt
 from app.views.curves_plot import CurvesPlot
 from app.tabs.base import AnalysisTab, AppContext
+from analysis.study.citations import EOM
+from app.widgets.citation_note import CitationNote
 
 __all__ = ["ObserverTab", "TAB", "observer_settings", "OBSERVER_W", "NODES"]
 
@@ -57,6 +59,7 @@ class ObserverTab(AnalysisTab):
         self.device_label.setWordWrap(True)
         lay.addWidget(self.device_label)
         lay.addLayout(grid, 1)
+        lay.addWidget(CitationNote(EOM))  # the full citation of the tab's equation numbers
 
     def _build_plots(self) -> None:
         w_axis, y_axis = ("ω", "rad/s"), ("|v/u|", "m/(N·s)")

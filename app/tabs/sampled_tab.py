@@ -52,6 +52,8 @@ from app.views.time_response import TimeResponse
 from app.widgets.node_progress import NodeProgress
 from app.widgets.task_progress import TASK_TITLES
 from app.tabs.base import AnalysisTab, AppContext
+from analysis.study.citations import ADAMS, HANNAFORD_RYU
+from app.widgets.citation_note import CitationNote
 
 __all__ = ["SampledTab", "TAB", "MAP_AXES", "DEFAULT_RANGES", "map_arguments", "exact_grid", "ASYNC_NODES",
            "MAP_NODE", "EXACT_NODE", "LIMIT_NODE", "SIM_NODE"]
@@ -118,6 +120,7 @@ class SampledTab(AnalysisTab):
         lay.setSpacing(2)
         lay.addWidget(self.settings_button, 0, Qt.AlignmentFlag.AlignLeft)
         lay.addWidget(self.split, 1)
+        lay.addWidget(CitationNote(ADAMS, HANNAFORD_RYU))  # the full citation of the tab's equation numbers
         ctx.graph.ready.connect(self._on_ready)
         ctx.graph.cancelled.connect(self._on_cancelled)
         ctx.graph.failed.connect(self._on_failed)

@@ -9,6 +9,8 @@ from app.views.base import PlotView
 from app.views.range_plot import RangePlot
 from app.views.stability_plot import VIEW_MODES, StabilityPlot
 from app.tabs.base import AnalysisTab, AppContext
+from analysis.study.citations import ADAMS
+from app.widgets.citation_note import CitationNote
 
 __all__ = ["StabilityTab", "TAB"]
 
@@ -47,6 +49,7 @@ class StabilityTab(AnalysisTab):
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addLayout(tools)
         lay.addWidget(split, 1)
+        lay.addWidget(CitationNote(ADAMS))  # the full citation of the tab's equation numbers
 
     @property
     def log_y(self) -> bool:

@@ -44,6 +44,8 @@ from app.views.curves_plot import CurvesPlot
 from app.views.wall_summary import inf_spans, wall_summary
 from app.widgets.task_progress import TASK_TITLES
 from app.tabs.base import AnalysisTab, AppContext
+from analysis.study.citations import EOM
+from app.widgets.citation_note import CitationNote
 
 __all__ = ["TransparencyTab", "TAB", "wall_settings", "wall_design", "WallPoint", "WallTradeoff",
            "WallAdmittances", "admittance_grid", "DEFAULT_BC", "NODES", "HOLD_LABELS"]
@@ -87,6 +89,7 @@ class TransparencyTab(AnalysisTab):
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addWidget(self.panel)
         lay.addLayout(grid, 1)
+        lay.addWidget(CitationNote(EOM))  # the full citation of the tab's equation numbers
         self.panel.bcChanged.connect(self._on_bc)
         self.panel.optimumRequested.connect(self.use_optimum)
         ctx.graph.ready.connect(self._on_ready)

@@ -47,6 +47,8 @@ from app.widgets.node_progress import NodeProgress
 from app.widgets.sci_spin_box import SciSpinBox
 from app.widgets.section_binding import SectionBinding
 from app.widgets.task_progress import TASK_TITLES
+from analysis.study.citations import ADAMS, COLGATE_SCHENKEL
+from app.widgets.citation_note import CitationNote
 
 __all__ = ["ZWidthTab", "TAB"]
 
@@ -89,6 +91,7 @@ class ZWidthTab(AnalysisTab):
         lay = QVBoxLayout(self)
         lay.setContentsMargins(4, 2, 4, 4)
         lay.addWidget(split)
+        lay.addWidget(CitationNote(ADAMS, COLGATE_SCHENKEL))  # the full citation of the tab's equation numbers
         ctx.graph.ready.connect(self._on_ready)
         ctx.graph.cancelled.connect(self._on_cancelled)
         ctx.graph.failed.connect(self._on_failed)

@@ -361,6 +361,8 @@ class PlotView(QWidget):
         placer = getattr(self, "legend_placer", None)
         if placer is not None:
             placer.place()
+        elif self.legend_row is not None:
+            return  # a legend in the row below the x axis stays there (legend_outside)
         else:
             self.legend.anchor(itemPos=(1, 0), parentPos=(1, 0), offset=(-10, 10))
 

@@ -18,7 +18,7 @@ from analysis.sampled import CriticalChart, CriticalMassChart
 
 from analysis.study import IMPEDANCE, ChartResult, DisplayKind, display_kind
 from app.views.base import PlotView, Series, clean_xy, mark_design_point, plain
-from app.views.placement import CenterMessage, LegendPlacer
+from app.views.placement import CenterMessage
 
 __all__ = ["ExactLimitChart"]
 
@@ -39,7 +39,9 @@ class ExactLimitChart(PlotView):
                                      symbolPen=pg.mkPen("w", width=1.5), name="current gains")
         self.point.setZValue(20)
         self.plot.addItem(self.point)
-        self.legend_placer = LegendPlacer(self)  # where it covers neither curve nor the current gains
+        # A small chart (360 x 170 px at 1280 x 800) has no free corner for three entries: the legend
+        # sits in a row below the x axis, where it covers neither curve nor the current gains.
+        self.legend_outside(columns=3)
         self.message = CenterMessage(self)
         self._point_xy: tuple[float, float] | None = None
         self.chart: CriticalChart | CriticalMassChart | None = None

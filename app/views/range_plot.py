@@ -21,7 +21,6 @@ from analysis import StabilityResult
 from analysis.study import display_kind
 
 from app.views.base import PlotView, Series, clean_xy, plain, rich_label
-from app.views.placement import LegendPlacer
 
 __all__ = ["RangePlot", "interest_mask", "TAIL_FRACTION", "TAIL_JUMP", "BMIN_DECADES"]
 
@@ -73,7 +72,9 @@ class RangePlot(PlotView):
         self.below_scale.setParentItem(self.plot.getViewBox())
         self.below_scale.setZValue(60)
         self.plot.getViewBox().sigResized.connect(lambda *_: self._place_notes())
-        self.legend_placer = LegendPlacer(self, areas=self.band_area, rects=self._note_rects)
+        # four long entries: at laptop size no corner of the data area is free, so the legend
+        # sits in a row below the x axis, where it covers neither the curves nor the notes
+        self.legend_outside(columns=2)
         self.default_y: tuple[float, float] | None = None  # data range of interest (N·s/m), for tests
         self._series: list[Series] = []
 
@@ -89,24 +90,10 @@ class RangePlot(PlotView):
 
         return bounds
 
-    def band_area(self) -> np.ndarray:
-        """Sample points (view coordinates) of the shaded band between |Z_min| and |Z_max|, for the legend."""
-        x1, y1 = self.zmin_curve.getData()
-        x2, y2 = self.zmax_curve.getData()
-        if x1 is None or x2 is None or len(x1) < 2 or len(x2) < 2:
-            return np.empty((0, 2))
-        xs = np.linspace(max(x1[0], x2[0]), min(x1[-1], x2[-1]), 64)
-        a, b = np.interp(xs, x1, y1), np.interp(xs, x2, y2)
-        f = np.linspace(0.0, 1.0, 16)
-        return np.column_stack([np.repeat(xs, f.size), (a[:, None] + (b - a)[:, None] * f[None, :]).ravel()])
-
     def _place_notes(self) -> None:
         r = self.plot.getViewBox().boundingRect()
         self.off_scale.setPos(r.right() - 6, r.top() + 2)
         self.below_scale.setPos(r.right() - 6, r.bottom() - 2)
-
-    def _note_rects(self) -> list:
-        return [t.sceneBoundingRect() for t in (self.off_scale, self.below_scale) if t.textItem.toPlainText()]
 
     def update_result(self, res: StabilityResult) -> None:
         w = res.w

@@ -17,7 +17,7 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
 from analysis.sampled import SimulationResult, Verdict
 
-from app.views.base import PlotView, Series, plain
+from app.views.base import PlotView, Series, clean_xy, plain
 
 __all__ = ["TimePlot", "TimeResponse", "verdict_text", "VERDICT_COLORS"]
 
@@ -72,6 +72,8 @@ class TimePlot(PlotView):
         for name, item in self.curves.items():
             self.set_legend_text(item, _SHORT.get(name, name))
         self.plot_widget.setMinimumSize(130, 120)
+        self._raw: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+        self.dropped = 0
         self.cursor_label.setMinimumWidth(0)
 
     def restyle(self, pal: dict) -> None:
@@ -80,31 +82,39 @@ class TimePlot(PlotView):
             item.setPen(pg.mkPen(color, width=1.6, style=self._styles[name]))
 
     def set_series(self, t: np.ndarray, values: dict[str, np.ndarray | None]) -> None:
+        """Draw the curves; non-finite samples (a diverged run) are not drawn but kept for export,
+        and the plot says how many were left out (NaN never reaches a plot silently)."""
+        self._raw = {}
+        dropped = 0
         for name, item in self.curves.items():
             y = values.get(name)
             if y is None:
                 item.setData([], [])
                 item.setVisible(False)
             else:
-                item.setData(np.asarray(t, float), np.asarray(y, float))
+                self._raw[name] = (np.asarray(t, float), np.asarray(y, float))
+                x, yy, bad = clean_xy(*self._raw[name])
+                dropped += bad
+                item.setData(x, yy)
                 item.setVisible(True)
+        self.dropped = dropped
+        if dropped and not self.warning.text():
+            self.set_warning([f"{dropped} non-finite samples (the run diverged) are not drawn; "
+                              "the CSV export has them"])
+        elif not dropped and self.warning.text().startswith("⚠ ") and "non-finite" in self.warning.text():
+            self.set_warning([])
         self.plot.enableAutoRange()
         self.bump()
 
     def data(self, name: str) -> tuple[np.ndarray, np.ndarray]:
-        """The curve's full data as set (not the downsampled display data)."""
-        item = self.curves[name]
-        if item.xData is None:
+        """The curve's full data as set (non-finite samples included; not the downsampled display data)."""
+        if name not in self._raw:
             return np.empty(0), np.empty(0)
-        return np.asarray(item.xData), np.asarray(item.yData)
+        return self._raw[name]
 
     def export_series(self) -> list[Series]:
-        out = []
-        for name, item in self.curves.items():
-            if item.isVisible() and item.xData is not None and len(item.xData):
-                out.append(Series(name, "t (s)", f"{name} ({self.y_unit})", np.asarray(item.xData),
-                                  np.asarray(item.yData)))
-        return out
+        return [Series(name, "t (s)", f"{name} ({self.y_unit})", x, y)
+                for name, (x, y) in self._raw.items() if len(x)]
 
 
 class TimeResponse(QWidget):

@@ -24,7 +24,7 @@ class NodeProgress(QWidget):
         self.label = QLabel()
         self.bar = QProgressBar()
         self.bar.setMaximumHeight(14)
-        self.bar.setTextVisible(False)
+        self.bar.setFormat("%v/%m")  # the count lives in the bar, so the label's width never changes
         self.cancel_button = QPushButton("Cancel")
         self.cancel_button.setToolTip("Stop this computation (the last result stays on the plot)")
         self.rerun_button = QPushButton("Run again")
@@ -62,7 +62,6 @@ class NodeProgress(QWidget):
         if name == self.name and self.running:
             self.bar.setRange(0, max(total, 1))
             self.bar.setValue(done)
-            self.label.setText(f"{self.title}… {done}/{total}")
 
     @Slot(str)
     def _on_end(self, name: str) -> None:

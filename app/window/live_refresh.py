@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from PySide6.QtCore import QObject, QTimer, Slot
 from PySide6.QtWidgets import QTabWidget
+from shiboken6 import isValid
 
 from app.core.compute_graph import ComputeGraph
 from app.tabs import AnalysisTab
@@ -48,6 +49,8 @@ class LiveRefresh(QObject):
     def refresh_visible(self) -> None:
         """Update the verdict and the visible tab from the graph (hidden tabs stay stale)."""
         self._scheduled = False
+        if not (isValid(self.tabs) and isValid(self.verdict)):
+            return  # the window closed before this queued refresh ran
         if self.verdict_stale:
             self.verdict.update_result(self.graph.get(self.graph.stability_name))
             self.verdict_stale = False

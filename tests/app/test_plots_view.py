@@ -42,6 +42,9 @@ def covered(view, item_or_xy) -> int:
     pts = scene_points(vb, np.asarray(x, float), np.asarray(y, float))
     if len(pts) > 1:
         pts = densify(pts)
+    box = vb.sceneBoundingRect()  # a point outside the data area is not drawn, so not covered
+    pts = pts[(pts[:, 0] >= box.left()) & (pts[:, 0] <= box.right())
+              & (pts[:, 1] >= box.top()) & (pts[:, 1] <= box.bottom())]
     r = view.legend.sceneBoundingRect()
     return int(np.count_nonzero((pts[:, 0] >= r.left()) & (pts[:, 0] <= r.right())
                                 & (pts[:, 1] >= r.top()) & (pts[:, 1] <= r.bottom())))
@@ -176,7 +179,8 @@ def test_range_plot_default_view_shows_the_data_of_interest(qtbot, display):
     # the export keeps every point, the off-scale ones too
     zmin = next(s for s in view.export_series() if s.name == "|Z_min|")
     assert zmin.y.max() == np.abs(res.zmin).max() and zmin.y.size == res.w.size
-    assert view.legend_placer.covered(areas=False) == 0  # no curve point under the legend
+    for curve in (view.zmin_curve, view.zmax_curve, view.kmax_curve, view.bmin_curve):
+        assert covered(view, curve) == 0  # no curve point under the legend
 
 
 def test_range_plot_without_a_blow_up_keeps_the_whole_band(qtbot):
