@@ -12,6 +12,7 @@
   filter, the optimum cut-off and the hardware trials (issue 15);
 * :mod:`.identify` -- identification fits, the profile's identification section and the
   robust designs over its parameter box (issue 14);
+* :mod:`.labels` -- names and units of swept parameters, hold models and plants, for people.
 * :mod:`.citations` -- the full references of the papers whose equation numbers zwidth shows.
 """
 
@@ -67,6 +68,7 @@ from .wall import (
     wall_tradeoff,
 )
 from .citations import REFERENCES, Reference, citation_text
+from .labels import HOLD_LABELS, PARAMETER_LABELS, PLANT_LABELS
 from .summary import SUMMARY_VERSION, design_summary, format_design, format_summary, summarize
 from .zwidth import (
     OPTIMUM_CUTOFFS,
@@ -99,6 +101,7 @@ from .identify import (
 )
 
 __all__ = [
+    "HOLD_LABELS", "PARAMETER_LABELS", "PLANT_LABELS",
     "ADMITTANCE", "DISPLAY_KINDS", "IMPEDANCE", "DisplayKind", "Gain", "display_kind",
     "DIGITS", "QUANTITIES", "Quantity", "format_number", "quantity",
     "DESIGN_KEYS", "HEADLINE_KEYS", "Headline", "designs", "headline",

@@ -41,6 +41,7 @@ from analysis.study import (
     stability_map,
 )
 
+from analysis.study.labels import PARAMETER_LABELS
 from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress
 from app.core.nodes_stability import DEVICE_INPUTS, GAIN_FIELDS
 
@@ -56,13 +57,6 @@ POINT_NODE = "sampled_point"
 MAP_AXES: dict[str, list[tuple[str, str]]] = {name: list(k.map_axes) for name, k in DISPLAY_KINDS.items()}
 DEFAULT_RANGES: dict[tuple[str, str], tuple[float, float]] = {
     (name, p): r for name, k in DISPLAY_KINDS.items() for p, r in k.map_ranges.items()}
-#: Map parameter names of :data:`analysis.sampled.MAP_PARAMETERS` -> (axis label, unit).
-PARAMETER_LABELS: dict[str, tuple[str, str]] = {
-    "kc": ("k_c", "N/m"), "bc": ("b_c", "N·s/m"), "mc": ("m_c", "kg"), "kp": ("k_p", "N/m"),
-    "kd": ("k_d", "N·s/m"), "kobj": ("k_obj", "N/m"), "bobj": ("b_obj", "N·s/m"), "me": ("m_e", "kg"),
-    "grasp_mass": ("grasp mass", "kg"), "grasp_damping": ("grasp damping", "N·s/m"),
-    "grasp_stiffness": ("grasp stiffness", "N/m"),
-}
 EXACT_BC_RANGE, EXACT_POINTS = EXACT_CHART["bc_range"], EXACT_CHART["points"]
 
 

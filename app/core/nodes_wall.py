@@ -26,6 +26,7 @@ from analysis.study import (
     wall_tradeoff,
 )
 
+from analysis.study.labels import HOLD_LABELS, PLANT_LABELS
 from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress, Pull
 from app.core.model import DEVICE_FIELDS
 
@@ -36,15 +37,6 @@ NODES = ("wall_design", "wall_tradeoff", "wall_point", "wall_step", "wall_admitt
 #: The nodes evaluated at the current B_c (node parameter ``bc``).
 AT_BC_NODES = ("wall_point", "wall_step", "wall_admittance")
 _INPUTS = frozenset({"wall"}) | frozenset(DEVICE_FIELDS)
-#: The hold models of ``WallSettings.hold`` and the plants of ``WallSettings.plant``, for people.
-HOLD_LABELS = {
-    "none": "none: H = 1 (no hold)",
-    "pade": "Padé: half-sample delay, 1st order",
-    "lowpass2": "2nd-order low-pass at Nyquist (paper)",
-    "zoh": "ZOH: (1 − e^(−sT))/(sT)",
-    "discrete": "exact sampled loop (discrete)",
-}
-PLANT_LABELS = {"rigid": "rigid handle: m, b below", "chain": "the profile's device chain"}
 
 
 def _design_key(p: Profile, params: dict) -> Hashable:

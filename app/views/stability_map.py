@@ -19,7 +19,7 @@ from PySide6.QtWidgets import QWidget
 
 from analysis.sampled import StabilityMap
 
-from app.core.nodes_sampled import PARAMETER_LABELS
+from analysis.study.labels import PARAMETER_LABELS
 from app.views.base import PlotView, Series, plain
 
 __all__ = ["StabilityMapView", "PARAMETER_LABELS", "radius_colormap"]

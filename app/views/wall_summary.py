@@ -9,7 +9,8 @@ import numpy as np
 
 from analysis.transparency.settings import WallSettings
 
-from app.core.nodes_wall import HOLD_LABELS, WallPoint, WallTradeoff
+from analysis.study.labels import HOLD_LABELS
+from analysis.study.wall import WallPoint, WallTradeoff
 from app.views.base import fmt
 
 __all__ = ["wall_summary", "inf_spans"]
