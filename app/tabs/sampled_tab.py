@@ -51,6 +51,7 @@ from app.views.stability_map import StabilityMapView
 from app.views.time_response import TimeResponse
 from app.widgets.node_progress import NodeProgress
 from app.widgets.task_progress import TASK_TITLES
+from app.tabs.async_jobs import AsyncJobs
 from app.tabs.base import AnalysisTab, AppContext
 from analysis.study.citations import ADAMS, HANNAFORD_RYU
 from app.widgets.citation_note import CitationNote
@@ -72,7 +73,8 @@ def _column(*widgets: QWidget) -> QWidget:
     return w
 
 
-class SampledTab(AnalysisTab):
+class SampledTab(AsyncJobs, AnalysisTab):
+    job_titles = TITLES  # the background nodes: cancel, failure and run-again (AsyncJobs)
     title = "Sampled-data"
     order = 30
     nodes = frozenset({*ASYNC_NODES, POINT_NODE, "design_chart", "stability", "max_stiffness"})
@@ -122,8 +124,8 @@ class SampledTab(AnalysisTab):
         lay.addWidget(self.split, 1)
         lay.addWidget(CitationNote(ADAMS, HANNAFORD_RYU))  # the full citation of the tab's equation numbers
         ctx.graph.ready.connect(self._on_ready)
-        ctx.graph.cancelled.connect(self._on_cancelled)
-        ctx.graph.failed.connect(self._on_failed)
+        ctx.graph.cancelled.connect(self.on_job_cancelled)
+        ctx.graph.failed.connect(self.on_job_failed)
 
     def _controls(self) -> QWidget:
         controls = QWidget()
@@ -272,32 +274,6 @@ class SampledTab(AnalysisTab):
     def _on_ready(self, name: str) -> None:
         if name in self.nodes and self.isVisible():
             self.refresh()
-
-    @Slot(str)
-    def _on_cancelled(self, name: str) -> None:
-        if name in ASYNC_NODES:
-            self._held[name] = self.ctx.graph.key_of(name)
-            if self.isVisible():
-                self.refresh()
-
-    @Slot(str, str)
-    def _on_failed(self, name: str, message: str) -> None:
-        if name in ASYNC_NODES:
-            self._held[name] = self.ctx.graph.key_of(name)
-            self._errors[name] = f"{TITLES[name]} failed: {message}"
-            if self.isVisible():
-                self.refresh()
-
-    @Slot(str)
-    def run_again(self, name: str) -> None:
-        """Restart a cancelled (or failed) computation."""
-        self._held.pop(name, None)
-        self._errors.pop(name, None)
-        self.progress[name].hide()
-        if self.isVisible():
-            self.refresh()
-        else:
-            self.stale = True
 
     def cancel(self, name: str) -> None:
         self.ctx.graph.cancel(name)

@@ -38,6 +38,7 @@ from analysis.study import controller_section, trial_score, wall_edits, region_w
 from app.core import nodes_zwidth
 from app.core.compute_graph import ComputeGraph
 from app.core.nodes_zwidth import OPTIMUM_NODE, REGION_NODE, TRIALS_NODE, ZWIDTH_NODES
+from app.tabs.async_jobs import AsyncJobs
 from app.tabs.base import AnalysisTab, AppContext
 from app.views.base import PlotView
 from app.views.filter_optimum_view import FilterOptimumView
@@ -56,7 +57,8 @@ TITLES = {REGION_NODE: "Z-width region", OPTIMUM_NODE: "Optimum filter cut-off"}
 SHORT_TITLES = {REGION_NODE: "Z-width region", OPTIMUM_NODE: "Optimum cut-off"}
 
 
-class ZWidthTab(AnalysisTab):
+class ZWidthTab(AsyncJobs, AnalysisTab):
+    job_titles = TITLES  # the background nodes: cancel, failure and run-again (AsyncJobs)
     title = "Z-width"
     order = 35
     nodes = frozenset({*ZWIDTH_NODES, TRIALS_NODE})
@@ -93,8 +95,8 @@ class ZWidthTab(AnalysisTab):
         lay.addWidget(split)
         lay.addWidget(CitationNote(ADAMS, COLGATE_SCHENKEL))  # the full citation of the tab's equation numbers
         ctx.graph.ready.connect(self._on_ready)
-        ctx.graph.cancelled.connect(self._on_cancelled)
-        ctx.graph.failed.connect(self._on_failed)
+        ctx.graph.cancelled.connect(self.on_job_cancelled)
+        ctx.graph.failed.connect(self.on_job_failed)
 
     def _controls(self) -> QWidget:
         box = QGroupBox("Region and trials")
@@ -250,32 +252,6 @@ class ZWidthTab(AnalysisTab):
     def _on_ready(self, name: str) -> None:
         if name in ZWIDTH_NODES and self.isVisible():
             self.refresh()
-
-    @Slot(str)
-    def _on_cancelled(self, name: str) -> None:
-        if name in ZWIDTH_NODES:
-            self._held[name] = self.ctx.graph.key_of(name)
-            if self.isVisible():
-                self.refresh()
-
-    @Slot(str, str)
-    def _on_failed(self, name: str, message: str) -> None:
-        if name in ZWIDTH_NODES:
-            self._held[name] = self.ctx.graph.key_of(name)
-            self._errors[name] = f"{TITLES[name]} failed: {message}"
-            if self.isVisible():
-                self.refresh()
-
-    @Slot(str)
-    def run_again(self, name: str) -> None:
-        """Restart a cancelled (or failed) computation."""
-        self._held.pop(name, None)
-        self._errors.pop(name, None)
-        self.progress[name].hide()
-        if self.isVisible():
-            self.refresh()
-        else:
-            self.stale = True
 
     def plot_views(self) -> list[PlotView]:
         return [self.region_view, self.optimum_view]
