@@ -13,11 +13,12 @@ from __future__ import annotations
 import datetime as _dt
 import importlib
 import math
+import re
 import sys
 import time
 from pathlib import Path
 
-__all__ = ["run_bench", "format_rows"]
+__all__ = ["run_bench", "format_rows", "merge_tables"]
 
 BEGIN = "<!-- bench:begin -->"
 END = "<!-- bench:end -->"
@@ -77,16 +78,33 @@ def run_bench(quick: bool = False, only: str | None = None, write: bool | None =
         from tests.benchmarks.common import machine
 
         stamp = _dt.datetime.now().strftime("%Y-%m-%d %H:%M")
-        body = f"Run on {stamp} on {machine()} ({'quick' if quick else 'full'} run, {total:.0f} s).\n\n"
-        body += "\n\n".join(sections)
+        run = "quick" if quick else "full"
         path = root / "BENCHMARKS.md"
         text = path.read_text() if path.exists() else f"# Benchmarks\n\n{BEGIN}\n{END}\n"
-        if BEGIN in text and END in text:
-            head, rest = text.split(BEGIN, 1)
-            tail = rest.split(END, 1)[1]
-            text = f"{head}{BEGIN}\n{body}\n{END}{tail}"
-        else:
-            text += f"\n{BEGIN}\n{body}\n{END}\n"
-        path.write_text(text)
+        path.write_text(merge_tables(text, sections, f"{stamp} on {machine()} ({run} run, {total:.0f} s)",
+                                     partial=bool(only)))
         print(f"wrote {path}")
     return 0
+
+
+def merge_tables(text: str, sections: list[str], run: str, partial: bool = False) -> str:
+    """``text`` (BENCHMARKS.md) with its tables block holding ``sections``.
+
+    A full run replaces the block.  A partial run (``--only``) replaces only the modules it ran
+    (``### bench_name`` sections) and keeps every other table, with a line saying which tables
+    are newer."""
+    if BEGIN not in text or END not in text:
+        text += f"\n{BEGIN}\n{END}\n"
+    head, rest = text.split(BEGIN, 1)
+    old, tail = rest.split(END, 1)
+    if not partial:
+        return f"{head}{BEGIN}\nRun on {run}.\n\n" + "\n\n".join(sections) + f"\n{END}{tail}"
+    parts = re.split(r"(?m)^(?=### )", old)
+    intro = [q for q in parts if not q.startswith("### ")]
+    tables = {q.split("\n", 1)[0][4:].strip(): q.strip() for q in parts if q.startswith("### ")}
+    for sec in sections:
+        tables[sec.split("\n", 1)[0][4:].strip()] = sec.strip()
+    names = ", ".join(sec.split("\n", 1)[0][4:].strip() for sec in sections)
+    lines = [ln for ln in "".join(intro).strip().splitlines() if not ln.startswith("Partly re-run")]
+    lines.append(f"Partly re-run on {run}: {names}.")
+    return f"{head}{BEGIN}\n" + "\n".join(lines) + "\n\n" + "\n\n".join(tables.values()) + f"\n{END}{tail}"

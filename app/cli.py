@@ -8,7 +8,7 @@ Usage::
     zwidth analyze PROFILE [--json]
                                   print the analysis summary of a profile (never imports Qt)
     zwidth design PROFILE [--display impedance|admittance] [--json]
-    zwidth export-plot PROFILE --plot bound|range|chart|... -o FILE.png|svg|csv
+    zwidth export-plot PROFILE --plot bound|reserve|range|chart|... -o FILE.png|svg|csv
     zwidth report PROFILE -o report.pdf|report.html [--page-size a4|letter]
     zwidth bench [--quick]
     zwidth identify MEASUREMENT... --masses N [--fix KEY=VALUE]... -o profile.json [--json]
@@ -31,7 +31,7 @@ __all__ = ["main"]
 SUBCOMMANDS = ("analyze", "design", "gui", "bench", "export-plot", "report", "identify")
 
 #: ``--plot`` names of ``export-plot`` -> figure keys of :mod:`app.report.figures`
-PLOTS = {"bound": "bound", "range": "range", "chart": "chart", "transparency": "tradeoff_j",
+PLOTS = {"bound": "bound", "reserve": "reserve", "range": "range", "chart": "chart", "transparency": "tradeoff_j",
          "robustness": "tradeoff_l", "step": "step", "map": "map", "scenario-position": "scenario_position",
          "scenario-force": "scenario_force", "identify": "identify", "identify-phase": "identify_phase",
          "zwidth-region": "zwidth_region", "filter-optimum": "filter_optimum"}

@@ -51,13 +51,13 @@ def _fail(message: str, code: int = 1) -> int:
 
 
 def format_parameters(rows: list[dict]) -> str:
-    """The parameter table as aligned text (value, standard error, 95 % interval)."""
-    head = ("parameter", "value", "std error", "95 % low", "95 % high", "")
+    """The parameter table as aligned text (value, standard error, 95 % interval and its method)."""
+    head = ("parameter", "value", "std error", "95 % low", "95 % high", "interval", "")
     lines = [head]
     for r in rows:
         t = r["text"]
         note = "fixed" if r["fixed"] else ("" if r["identifiable"] else "NOT identifiable")
-        lines.append((r["key"], t["value"], t["std_error"], t["low"], t["high"], note))
+        lines.append((r["key"], t["value"], t["std_error"], t["low"], t["high"], r.get("method", ""), note))
     widths = [max(len(line[i]) for line in lines) for i in range(len(head))]
     return "\n".join("  ".join(c.ljust(w) for c, w in zip(line, widths)).rstrip() for line in lines)
 

@@ -163,7 +163,7 @@ def test_design_text_and_bad_display():
 
 
 @pytest.mark.parametrize("plot,ext", [("bound", "png"), ("range", "svg"), ("chart", "csv"), ("map", "svg"),
-                                      ("transparency", "csv")])
+                                      ("transparency", "csv"), ("reserve", "csv")])
 def test_export_plot(tmp_path, plot, ext):
     profile = EOM if plot == "transparency" else HBFD
     out = tmp_path / f"p.{ext}"

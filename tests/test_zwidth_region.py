@@ -98,12 +98,105 @@ def test_hbfd_has_an_interior_optimum_cutoff(hbfd):
     assert optimal_filter(hbfd, "lowpass1", cut, b=np.geomspace(1, 1000, 16), cancelled=lambda: True) is None
 
 
-def test_rigid_device_area_grows_with_the_cutoff(rigid):
-    """In the exact linear analysis a rigid device gains nothing from filtering: the filter only
-    adds phase lag (the interior optimum of Chawda et al. needs more than the linear loop)."""
-    o = optimal_filter(rigid, "lowpass1", np.geomspace(2 * math.pi * 10, 2 * math.pi * 450, 6),
-                       b=np.geomspace(1, 1000, 16), delay_samples=1)
-    assert np.all(np.diff(o.areas) > 0) and o.area <= o.backward_area
+def _rigid_loop_roots(K: float, B: float, d: int, f: VelocityFilter, m: float = 0.5, c: float = 2.0) -> np.ndarray:
+    """Closed-loop poles (in z) of a rigid mass under the wall ``K + B V(z)``, built by hand.
+
+    Exact ZOH of ``m x'' = F - c x'`` from force to position, in ``q = 1/z``:
+    ``q (g1 + g2 q)/((1 - q)(1 - e q))`` with ``e = exp(-cT/m)``; the wall force
+    ``-q^d (K + B n_v(q)/d_v(q)) x`` with ``V = n_v/d_v`` (the filter's transfer function).  The
+    characteristic polynomial is ``(1 - q)(1 - e q) d_v + q^(d+1) (g1 + g2 q)(K d_v + B n_v)``;
+    ascending powers of q are descending powers of z.
+    """
+    e = math.exp(-c * T / m)
+    tau = m / c
+    g1 = (T - tau * (1 - e)) / c
+    g2 = (tau * (1 - e) - T * e) / c
+    nv, dv = f.transfer_function(T)
+    n = max(nv.size, dv.size)
+    nv, dv = np.pad(nv, (0, n - nv.size)), np.pad(dv, (0, n - dv.size))
+    lhs = np.convolve(np.convolve([1.0, -1.0], [1.0, -e]), dv)
+    rhs = np.convolve(np.r_[np.zeros(d + 1), g1, g2], K * dv + B * nv)
+    size = max(lhs.size, rhs.size)
+    poly = np.pad(lhs, (0, size - lhs.size)) + np.pad(rhs, (0, size - rhs.size))
+    return np.roots(np.trim_zeros(poly, "b"))
+
+
+def _hand_radius(K: float, B: float, d: int, f: VelocityFilter, m: float = 0.5, c: float = 2.0) -> float:
+    return float(np.max(np.abs(_rigid_loop_roots(K, B, d, f, m, c))))
+
+
+@pytest.mark.parametrize("d", [0, 1, 2, 3])
+def test_rigid_damping_limit_has_a_closed_form(d):
+    """Backward difference, ideal mass, ZOH, d samples of delay: as K -> 0 the loop is
+    ``z^(d+1)(z - 1) + g (z + 1)``, g = BT/(2m).  The phase of ``(z + 1)/(z^(d+1)(z - 1))`` on the
+    unit circle is ``-pi/2 - (d+1) theta`` and its gain ``cot(theta/2)``, so the loop is stable up
+    to g = tan(pi/(4(d+1))): B_max = 2m/T, 0.828 m/T, 0.536 m/T, 0.398 m/T.  The exact region
+    (first crossing from a 1e-3 N/m floor) ends there."""
+    ideal = Device(masses=[0.5], stiffnesses=[], dampings=[], ground_dampings=[0.0], sample_time=T)
+    g = math.tan(math.pi / (4 * (d + 1)))
+    b_max = 2 * 0.5 / T * g
+    k = zwidth_region(ideal, b=np.array([0.99, 1.01]) * b_max, delay_samples=d, k_range=(1e-3, 1e9),
+                      passive=False).k_max
+    assert k[0] > 1e-3 and k[1] == 0.0
+    loop = np.r_[1.0, -1.0, np.zeros(d + 1)] + g * np.r_[np.zeros(d + 1), 1.0, 1.0]
+    assert np.max(np.abs(np.roots(loop))) == pytest.approx(1.0, abs=1e-9)
+
+
+def test_rigid_device_with_delay_has_no_interior_optimum(rigid):
+    """Chawda et al.'s interior optimum does not appear on a rigid device in this noise-free
+    linear analysis, even with the B range past the backward difference's damping limit.
+
+    The ZOH rigid mass has a zero at z = -1, so the 2B/T Nyquist gain of the backward
+    difference never reaches the loop; its damping limit (415.7 N s/m here, one sample of delay)
+    is a phase limit at fs/8, where a filter's lag costs more than its attenuation saves.  A
+    filter never raises K_max where the backward difference has a region, and at cut-offs from
+    5 Hz up nowhere; the area against the cut-off is U-shaped (an interior *minimum*).  Its left
+    branch is the degenerate limit w_f -> 0: the wall's B is then not rendered at all, and the
+    region stretches past B_max (roughly ``m/tau + c/(w_f tau)``, tau = 1.5 T) at small K.
+    """
+    b = np.geomspace(1, 1000, 16)
+    k_back = zwidth_region(rigid, b=b, delay_samples=1, passive=False).k_max
+    assert k_back[b < 400].min() > 0 and np.all(k_back[b > 420] == 0)
+    inside = k_back > 0
+    cut = np.geomspace(2 * math.pi * 0.2, 2 * math.pi * 450, 10)
+    for kind in ("lowpass1", "butter2"):
+        o = optimal_filter(rigid, kind, cut, b=b, delay_samples=1)
+        j = int(np.argmin(o.areas))
+        assert not o.interior and o.cutoff == cut[-1] and o.area < 0.95 * o.backward_area
+        assert 0 < j < cut.size - 1 and o.areas[0] > o.areas[j] and np.all(np.diff(o.areas[j:]) > 0)
+        for c in cut:
+            k = zwidth_region(rigid, b=b, delay_samples=1, velocity_filter=VelocityFilter(kind, c), passive=False).k_max
+            assert np.all(k[inside] <= k_back[inside] * (1 + 1e-9))
+            if c >= 2 * math.pi * 5:
+                assert np.all(k <= k_back * (1 + 1e-9))
+    tail = zwidth_region(rigid, b=b, delay_samples=1, velocity_filter=VelocityFilter("lowpass1", cut[0]),
+                         passive=False).k_max
+    assert tail[b > 600].min() > 300  # past B_max: the w_f -> 0 branch
+
+
+def test_rigid_region_point_is_where_the_hand_built_poles_cross_the_unit_circle(rigid):
+    """An independent check of the region: the hand-built closed loop crosses |z| = 1 at K_max."""
+    for f, B, d, hz in ((VelocityFilter("lowpass1", cutoff=2 * math.pi * 30), 100.0, 1, 37.457),
+                        (VelocityFilter("butter2", cutoff=2 * math.pi * 200), 10.0, 2, None)):
+        K = float(zwidth_region(rigid, b=np.array([B, 2 * B]), delay_samples=d, velocity_filter=f,
+                                passive=False).k_max[0])
+        assert _hand_radius(K * (1 - 1e-6), B, d, f) < 1 < _hand_radius(K * (1 + 1e-6), B, d, f)
+        if hz is not None:
+            roots = _rigid_loop_roots(K, B, d, f)
+            z = roots[np.argmax(np.abs(roots))]
+            assert abs(abs(z) - 1) < 1e-8 and abs(np.angle(z)) / (2 * math.pi * T) == pytest.approx(hz, abs=0.01)
+
+
+def test_a_stable_window_above_the_k_floor_is_not_reported():
+    """Conservative by construction: the region is the first crossing *from* ``k_floor``.  A light,
+    damped device with a 1 Hz Butterworth at B = 50 N s/m is unstable at small K and stable on a
+    window [~35, ~1300] N/m (hand-built poles); the region reports K_max = 0 there."""
+    light = Device(masses=[0.05], stiffnesses=[], dampings=[], ground_dampings=[2.0], sample_time=T)
+    f = VelocityFilter("butter2", cutoff=2 * math.pi * 1)
+    radius = [_hand_radius(k, 50.0, 1, f, m=0.05) for k in (1.0, 10.0, 100.0, 1000.0, 1400.0)]
+    assert radius[0] > 1 and radius[1] > 1 and radius[2] < 1 and radius[3] < 1 and radius[4] > 1
+    r = zwidth_region(light, b=np.array([50.0, 60.0]), delay_samples=1, velocity_filter=f, passive=False)
+    assert r.k_max[0] == 0.0
 
 
 def test_trials_are_loaded_and_scored(tmp_path, rigid):

@@ -50,6 +50,7 @@ from .velocity_filter import (  # noqa: F401
     FILTER_KINDS,
     FilterRealization,
     VelocityFilter,
+    display_filter,
 )
 from .grids import (  # noqa: F401
     warp,
@@ -98,4 +99,5 @@ __all__ = [
     "FILTER_KINDS",
     "FilterRealization",
     "VelocityFilter",
+    "display_filter",
 ]

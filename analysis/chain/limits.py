@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 from analysis.checks import Real
 from analysis.errors import ValidationError
@@ -72,13 +73,13 @@ class Limit:
     unit: str
     positive: bool = True
 
-    @property
+    @cached_property
     def text(self) -> str:
         basic = "> 0 and finite" if self.positive else ">= 0 and finite"
         unit = f" ({self.unit})" if self.unit else ""
         return f"{basic}, within the physical range [{self.lo:g}, {self.hi:g}]{unit}"
 
-    @property
+    @cached_property
     def rule(self) -> Real:
         """The :class:`~analysis.checks.Real` rule (errors carry the float value)."""
         return Real(lo=self.lo, hi=self.hi, lo_open=self.positive and self.lo == 0.0, allowed=self.text,

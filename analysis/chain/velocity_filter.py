@@ -36,7 +36,7 @@ import numpy as np
 from analysis.checks import Real, SettingsRecord, choice
 from analysis.errors import ValidationError
 
-__all__ = ["VelocityFilter", "FILTER_KINDS", "BACKWARD", "FilterRealization"]
+__all__ = ["VelocityFilter", "FILTER_KINDS", "BACKWARD", "FilterRealization", "display_filter"]
 
 #: The filter kinds and what they are.
 FILTER_KINDS = {
@@ -175,3 +175,15 @@ class VelocityFilter(SettingsRecord):
 
 #: The default velocity estimate.
 BACKWARD = VelocityFilter()
+
+
+def display_filter(velocity_filter: VelocityFilter | None, sample_time: float) -> VelocityFilter | None:
+    """A display's velocity filter, checked against its sample period: ``None`` for the plain
+    backward difference (eq. 4, the paper's own coupling, computed by its closed forms), else the
+    filter.  A wrong type or a cut-off at or above Nyquist raises :class:`ValidationError`."""
+    if velocity_filter is None:
+        return None
+    if not isinstance(velocity_filter, VelocityFilter):
+        raise ValidationError("velocity_filter", "a VelocityFilter or None", velocity_filter)
+    velocity_filter.check(sample_time)
+    return None if velocity_filter.is_backward else velocity_filter

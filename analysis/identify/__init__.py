@@ -12,7 +12,8 @@ eq. (9) predicts their experimental 50 kN/m (section VI).  This package closes t
 * the chain fit (:func:`fit_chain`, :func:`order_selection`): weighted least squares on the
   complex log-response in log-parameters, automatic start from the measured resonances and
   antiresonances (Stieltjes / Lanczos inverse, :mod:`analysis.identify.start`), Jacobian
-  covariance, 95 % intervals, correlations and identifiability (:class:`ChainFit`);
+  covariance, 95 % intervals (Wald, or profile likelihood where the Wald interval is unreliable,
+  :mod:`analysis.identify.profile`), correlations and identifiability (:class:`ChainFit`);
 * robust designs over a parameter box (:func:`robust_max_stiffness` for eq. 9,
   :func:`robust_feasible_damping` for eq. 21, :func:`robust_critical_stiffness` for the exact
   sampled-data limit), each naming its binding device.
@@ -32,6 +33,7 @@ from analysis.identify.fit import fit_chain, order_selection
 from analysis.identify.measurement import Measurement, make_measurement
 from analysis.identify.model import BOUNDARIES, QUANTITIES, continuous_response, response, sampled_response
 from analysis.identify.params import ChainParameters, device_value, device_with, parameter_keys
+from analysis.identify.profile import Profiler, profile_critical_value
 from analysis.identify.results import ChainFit, OrderSelection, Parameter
 from analysis.identify.robust import (
     RobustDamping,
@@ -41,10 +43,12 @@ from analysis.identify.robust import (
     robust_max_stiffness,
 )
 from analysis.identify.start import chain_from_spectrum, spectrum_from_chain
+from analysis.identify.uncertainty import INTERVAL_MODES, profile_selection
 from analysis.identify.welch import estimate_frf
 
 __all__ = [
     "BOUNDARIES",
+    "INTERVAL_MODES",
     "QUANTITIES",
     "ChainFit",
     "ChainParameters",
@@ -52,6 +56,7 @@ __all__ = [
     "MeasurementError",
     "OrderSelection",
     "Parameter",
+    "Profiler",
     "ParameterBox",
     "ParameterKeyError",
     "RobustDamping",
@@ -70,6 +75,8 @@ __all__ = [
     "order_selection",
     "parameter_box",
     "parameter_keys",
+    "profile_critical_value",
+    "profile_selection",
     "read_frf",
     "read_timeseries",
     "response",

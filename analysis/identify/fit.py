@@ -15,9 +15,15 @@ Method
    unknowns, the candidates also include the optimum of the fit with them released, the fixed
    values put back as they are and with the handle side rescaled to keep its modes
    (:func:`_released_starts`): the data-derived start knows nothing of the fixed values.
+   When the optimum has a handle-side mass shrunk to nothing (a degenerate plateau of a weakly
+   visible mode), restarts give it back a share of its neighbour's mass
+   (:func:`analysis.identify.degenerate.reinflate`).
 3. Uncertainty at the optimum (:mod:`analysis.identify.uncertainty`): covariance
-   ``s^2 (J^T J)^{-1}`` in log-parameters, 95 % intervals ``exp(theta +- 1.96 sigma)``, widened to
-   other optima that fit equally well (likelihood-ratio bound), identifiability with suggestions.
+   ``s^2 (J^T J)^{-1}`` in log-parameters, 95 % intervals ``exp(theta +- 1.96 sigma)`` where they
+   are reliable, profile-likelihood intervals (:mod:`analysis.identify.profile`) where not,
+   unbounded ``(0, inf)`` for parameters that are not identifiable (``intervals="auto"``);
+   widened to other optima that fit equally well (likelihood-ratio bound), identifiability
+   with suggestions.
 
 Identifiability of the HBFD
 ---------------------------
@@ -38,9 +44,10 @@ import numpy as np
 from scipy import optimize
 
 from analysis.chain.device import Device
+from analysis.identify.degenerate import reinflate
 from analysis.identify.measurement import Measurement
-from analysis.identify.params import ChainParameters, parameter_keys, parse_key, physical_range
-from analysis.identify.problem import FitProblem
+from analysis.identify.params import ChainParameters, parameter_keys, parse_key
+from analysis.identify.problem import FitProblem, solve
 from analysis.identify.results import ChainFit, OrderSelection
 from analysis.identify.starts import other_peaks, start_chains, visible_spectrum
 from analysis.identify.uncertainty import build_fit
@@ -69,40 +76,20 @@ def _check(measurements: Sequence[Measurement], n_masses: int, ground: Sequence[
             raise ValidationError(key, "> 0 and finite" if positive else ">= 0 and finite", v)
 
 
-def _solve(problem: FitProblem, theta0: np.ndarray, max_nfev: int) -> optimize.OptimizeResult:
-    """Levenberg-Marquardt on the residual with the batched Jacobian; when it leaves the physical
-    range of a parameter (:func:`analysis.identify.params.physical_range`, enforced by
-    :class:`~analysis.Device`), the bounded trust-region method from the clipped point instead."""
-    lo, hi = _log_bounds(problem)
-    kw = dict(jac=problem.jacobian, x_scale="jac", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=max_nfev)
-    inside = np.all((theta0 > lo) & (theta0 < hi))
-    if inside:
-        r = optimize.least_squares(problem.residual, theta0, method="lm", **kw)
-        if np.all((r.x >= lo) & (r.x <= hi)):
-            return r
-        theta0 = r.x
-    pad = 1e-9 * (hi - lo)
-    start = np.clip(theta0, lo + pad, hi - pad)
-    return optimize.least_squares(problem.residual, start, method="trf", bounds=(lo, hi), **kw)
-
-
-def _log_bounds(problem: FitProblem) -> tuple[np.ndarray, np.ndarray]:
-    n = problem.base.n
-    b = np.log(np.array([physical_range(k, n) for k in problem.keys]).reshape(-1, 2))
-    return b[:, 0], b[:, 1]
-
-
 def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_dampings: Sequence[int] | None = None,
               fixed: Mapping[str, float] | None = None, *, sensor_element: int = 0,
               sample_time: float | None = None, band_min: float = 1.0, starts: int = 4, seed: int = 0,
-              max_nfev: int = 200) -> ChainFit:
+              max_nfev: int = 200, intervals: str = "auto") -> ChainFit:
     """Fit an ``n_masses`` chain to ``measurements`` together (module doc).
 
     ``ground_dampings`` selects the masses with a damper to ground (default ``(n - 1,)``, the
     actuator); ``fixed`` maps keys such as ``"masses[0]"`` to known values.  The fitted
     :class:`~analysis.Device` carries ``sensor_element``, the sample time (``sample_time``, else
     the measurements' common one, else 1 ms) and ``band_min``.  ``starts`` seeded candidates are
-    tried when the data do not show every resonance.
+    tried when the data do not show every resonance.  ``intervals``: ``"auto"`` (Wald intervals,
+    replaced by profile-likelihood ones where the Wald interval is unreliable), ``"wald"`` (the
+    Jacobian only, fastest) or ``"profile"`` (every free parameter profiled); see
+    :func:`analysis.identify.uncertainty.profile_selection`.
     """
     fixed = dict(fixed or {})
     ground = tuple(sorted(set((n_masses - 1,) if ground_dampings is None else (int(g) for g in ground_dampings))))
@@ -122,6 +109,8 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
         released = _released_starts(problem, ground, fixed, rows.count, seed, hints, max_nfev)
         thetas = np.vstack([released, thetas])
     sol, others = _multistart(problem, thetas, max_nfev) if free else (None, [])
+    if sol is not None:
+        sol = reinflate(problem, sol, max_nfev)
     T = sample_time if sample_time is not None else _common_sample_time(measurements)
     template = Device(masses=np.ones(n_masses), stiffnesses=np.ones(n_masses - 1),
                       dampings=np.zeros(n_masses - 1), sensor_element=sensor_element, sample_time=T,
@@ -130,7 +119,7 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
         "no actuator/free measurement: the start is generic (modes spread over the band), not read off the "
         "data; check the fit, or add the collocated actuator test with the handle free",)
     return build_fit(problem, sol, keys, fixed, template, n_starts=thetas.shape[0], notes=notes,
-                     alternatives=[o.x for o in others])
+                     alternatives=[o.x for o in others], intervals=intervals)
 
 
 def _multistart(problem: FitProblem, thetas: np.ndarray,
@@ -139,9 +128,9 @@ def _multistart(problem: FitProblem, thetas: np.ndarray,
     lowest-cost optimum and the other full-run optima (for
     :func:`analysis.identify.uncertainty.widen_to_equivalent_optima`)."""
     if thetas.shape[0] == 1:
-        return _solve(problem, thetas[0], max_nfev), []
-    short = sorted((_solve(problem, th, _SHORT_RUN) for th in thetas), key=lambda r: r.cost)
-    full = sorted((_solve(problem, r.x, max_nfev) for r in short[:_FULL_RUNS]), key=lambda r: r.cost)
+        return solve(problem, thetas[0], max_nfev), []
+    short = sorted((solve(problem, th, _SHORT_RUN) for th in thetas), key=lambda r: r.cost)
+    full = sorted((solve(problem, r.x, max_nfev) for r in short[:_FULL_RUNS]), key=lambda r: r.cost)
     return full[0], full[1:]
 
 
@@ -225,7 +214,7 @@ def _hidden_hints(measurements: Sequence[Measurement], n: int, seed: int) -> np.
     rows = start_chains(dp[:1], k + 1, (k,), {}, count=1, seed=seed)
     keys = parameter_keys(k + 1, (k,))
     problem = FitProblem((dp[0],), tuple(keys), rows, 0)
-    th = _solve(problem, np.log(_values(rows, keys)[0]), _SHORT_RUN).x
+    th = solve(problem, np.log(_values(rows, keys)[0]), _SHORT_RUN).x
     r = problem.residual(th)
     F = dp[0].size
     mis = np.convolve(np.hypot(r[:F], r[F:]), np.ones(5) / 5, mode="same")
@@ -265,10 +254,12 @@ def order_selection(measurements: Sequence[Measurement], max_masses: int, *, min
 
     ``AIC = R ln(RSS/R) + 2 p`` and ``BIC = R ln(RSS/R) + p ln R`` with ``R`` real residuals and
     ``p`` free parameters (Gaussian errors of unknown variance).  ``kwargs`` go to
-    :func:`fit_chain`; ``ground_dampings`` defaults to the actuator of each order.  An order that
+    :func:`fit_chain` (``intervals`` defaults to ``"wald"`` here: the table needs no profiles);
+    ``ground_dampings`` defaults to the actuator of each order.  An order that
     cannot be fitted (e.g. a fixed key outside the chain) is reported with ``nan``.
     """
     out = []
+    kwargs.setdefault("intervals", "wald")
     for n in range(int(min_masses), int(max_masses) + 1):
         try:
             out.append(_Order(n, fit_chain(measurements, n, **kwargs), None))

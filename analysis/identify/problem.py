@@ -24,12 +24,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import optimize
 
 from analysis.identify.measurement import Measurement
 from analysis.identify.model import response
-from analysis.identify.params import ChainParameters
+from analysis.identify.params import ChainParameters, physical_range
 
-__all__ = ["FitProblem"]
+__all__ = ["FitProblem", "log_bounds", "solve"]
 
 _FD_STEP = 1e-7
 _CENTRAL_STEP = 1e-5
@@ -99,3 +100,27 @@ class FitProblem:
         rows = np.concatenate([theta[None, :], theta + h * np.eye(p)])
         r = self.residual_rows(rows)
         return ((r[1:] - r[0]) / h).T
+
+
+def solve(problem: FitProblem, theta0: np.ndarray, max_nfev: int, tol: float = 1e-15) -> optimize.OptimizeResult:
+    """Levenberg-Marquardt on the residual with the batched Jacobian; when it leaves the physical
+    range of a parameter (:func:`analysis.identify.params.physical_range`, enforced by
+    :class:`~analysis.Device`), the bounded trust-region method from the clipped point instead."""
+    lo, hi = log_bounds(problem)
+    kw = dict(jac=problem.jacobian, x_scale="jac", xtol=tol, ftol=tol, gtol=tol, max_nfev=max_nfev)
+    inside = np.all((theta0 > lo) & (theta0 < hi))
+    if inside:
+        r = optimize.least_squares(problem.residual, theta0, method="lm", **kw)
+        if np.all((r.x >= lo) & (r.x <= hi)):
+            return r
+        theta0 = r.x
+    pad = 1e-9 * (hi - lo)
+    start = np.clip(theta0, lo + pad, hi - pad)
+    return optimize.least_squares(problem.residual, start, method="trf", bounds=(lo, hi), **kw)
+
+
+def log_bounds(problem: FitProblem) -> tuple[np.ndarray, np.ndarray]:
+    """Physical range of the free parameters in ``theta = log(value)`` (lower, upper)."""
+    n = problem.base.n
+    b = np.log(np.array([physical_range(k, n) for k in problem.keys]).reshape(-1, 2))
+    return b[:, 0], b[:, 1]

@@ -23,6 +23,7 @@ class Parameter:
     high: float  # exp(theta + 1.96 sigma)
     fixed: bool
     identifiable: bool
+    method: str = "wald"  # how the interval was found (ChainFit.interval_methods)
 
 
 @dataclass(frozen=True, eq=False)
@@ -48,6 +49,11 @@ class ChainFit:
         Keys judged not identifiable from these measurements, and for each what would fix it.
     warnings:
         Human-readable notes (non-convergence, non-identifiable parameters, ...).
+    interval_methods:
+        How each interval was found: ``"wald"`` (``exp(theta +- 1.96 sigma)`` from ``J^T J``),
+        ``"profile"`` (profile likelihood, :mod:`analysis.identify.profile`), ``"profile
+        (unbounded)"`` (the data do not bound it on one side: ``0`` or ``inf``), ``"fixed"``;
+        ``" + other optima"`` when widened to equally good optima of the multi-start.
     """
 
     device: Device
@@ -76,19 +82,22 @@ class ChainFit:
     converged: bool
     evaluations: int
     starts: int
+    interval_methods: tuple[str, ...] = ()
 
     @property
     def intervals(self) -> dict[str, tuple[float, float]]:
-        """``{key: (low, high)}`` at 95 % for every parameter (a fixed one: its value twice)."""
+        """``{key: (low, high)}`` at 95 % for every parameter (a fixed one: its value twice; an
+        unbounded side ``0`` or ``inf``); :attr:`interval_methods` says how each was found."""
         return {k: (float(lo), float(hi)) for k, lo, hi in zip(self.keys, self.lower, self.upper)}
 
     @property
     def parameters(self) -> tuple[Parameter, ...]:
         """The parameter table as rows."""
         bad = set(self.non_identifiable)
-        return tuple(Parameter(k, float(v), float(e), float(lo), float(hi), bool(f), k not in bad)
-                     for k, v, e, lo, hi, f in zip(self.keys, self.values, self.std_errors, self.lower,
-                                                   self.upper, self.fixed))
+        methods = self.interval_methods or tuple("fixed" if f else "wald" for f in self.fixed)
+        return tuple(Parameter(k, float(v), float(e), float(lo), float(hi), bool(f), k not in bad, m)
+                     for k, v, e, lo, hi, f, m in zip(self.keys, self.values, self.std_errors, self.lower,
+                                                      self.upper, self.fixed, methods))
 
     def value(self, key: str) -> float:
         return float(self.values[self.keys.index(key)])

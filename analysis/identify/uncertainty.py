@@ -25,10 +25,12 @@ from scipy import optimize
 
 from analysis.chain.device import Device
 from analysis.identify.params import ChainParameters, parse_key
+from analysis.identify.degenerate import SHARES, degenerate_masses, restart
 from analysis.identify.problem import FitProblem
+from analysis.identify.profile import Profiler, curvature_ratios, profile_intervals
 from analysis.identify.results import ChainFit
 
-__all__ = ["build_fit", "suggestion", "covariance"]
+__all__ = ["CURVATURE_TOLERANCE", "INTERVAL_MODES", "build_fit", "covariance", "profile_selection", "suggestion"]
 
 Z95 = 1.959963984540054
 _SINGULAR = 1e-8
@@ -118,11 +120,88 @@ def widen_to_equivalent_optima(keys: Sequence[str], problem: FitProblem, lo: np.
     return lo, hi, moved
 
 
+INTERVAL_MODES = ("auto", "wald", "profile")
+#: Largest accepted departure of the curvature ratio from 1 (:func:`curvature_ratios`) before the
+#: Wald interval is replaced by the profile: at ``q = 0.85`` the profile bound is at least 8 %
+#: further out than the Wald bound, and the nominal 95 % falls to about 93 %.
+CURVATURE_TOLERANCE = 0.15
+#: RMS residual below which the data are taken as exact (noise-free) and the check is skipped.
+_ROUNDOFF = 1e-9
+
+
+def profile_selection(mode: str, keys: Sequence[str], wide: np.ndarray, q: np.ndarray,
+                      corr: np.ndarray) -> tuple[list[int], list[int]]:
+    """Free parameters whose interval comes from the profile likelihood, and those reported as
+    unbounded.
+
+    ``"wald"``: none; ``"profile"``: all profiled; ``"auto"``: the parameters that are not
+    identifiable (``wide``: a near-null direction of ``J^T J`` or a Wald interval wider than a
+    factor 10) are reported unbounded, ``(0, inf)``, without a profile -- the data leave several
+    disconnected families of chains within the likelihood bound (on the HBFD's actuator FRF
+    the handle side can even swap places with the next mass), which a local profile walk cannot
+    follow; then every other free parameter is profiled (its Wald interval holds at one point of a
+    flat valley, and at a degenerate point of it -- a handle mass shrunk to nothing -- the
+    correlations do not show the link).  Otherwise the parameters that fail the curvature check
+    (``|q - 1| > CURVATURE_TOLERANCE`` on a side) are profiled.
+    """
+    if mode not in INTERVAL_MODES:
+        from analysis.errors import ValidationError
+
+        raise ValidationError("intervals", " | ".join(INTERVAL_MODES), mode)
+    p = len(keys)
+    if mode == "wald" or p == 0:
+        return [], []
+    if mode == "profile":
+        return list(range(p)), []
+    bent = ~np.all(np.abs(q - 1.0) <= CURVATURE_TOLERANCE, axis=1)
+    if np.any(wide):  # the others' Wald intervals hold at one point of a flat valley
+        return [j for j in range(p) if not wide[j]], [j for j in range(p) if wide[j]]
+    return [j for j in range(p) if bent[j]], []
+
+
+def _with_profiles(problem: FitProblem, theta: np.ndarray, rss: float, cov: np.ndarray, keys: Sequence[str],
+                   lo: np.ndarray, hi: np.ndarray, methods: list[str], chosen: list[int]) -> Profiler:
+    """Replace the intervals of the free parameters ``chosen`` by their profile intervals."""
+    extra = tuple(restart(problem, theta, i, f) for i in degenerate_masses(problem, theta) for f in SHARES)
+    prof = Profiler(problem, theta, rss, cov, extra)
+    for j, (low, high, bounded) in profile_intervals(prof, chosen).items():
+        at = list(keys).index(problem.keys[j])
+        lo[at], hi[at] = low, high
+        methods[at] = "profile" if bounded else "profile (unbounded)"
+    return prof
+
+
+def _choose_intervals(problem: FitProblem, theta: np.ndarray, rss: float, cov: np.ndarray, corr: np.ndarray,
+                      keys: Sequence[str], s: np.ndarray, fx: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                      intervals: str, notes: Sequence[str]) -> tuple[list[str], list[str]]:
+    """Apply :func:`profile_selection` to ``lo``/``hi`` in place; the method of each interval
+    and the notes (plus one when the profile met a better fit than the optimum)."""
+    p = theta.size
+    methods = ["fixed" if f else "wald" for f in fx]
+    free_at = [list(keys).index(k) for k in problem.keys]
+    wide = np.array([not (s[a] <= _WIDE) for a in free_at], bool)
+    exact = rss <= _ROUNDOFF**2 * max(problem.n_residuals, 1)  # noise-free: RSS differences are round-off
+    q = curvature_ratios(problem, theta, rss, cov) if intervals == "auto" and not exact else np.ones((p, 2))
+    chosen, loose = profile_selection(intervals, problem.keys, wide, q, corr)
+    for j in loose:
+        at = free_at[j]
+        lo[at], hi[at], methods[at] = 0.0, math.inf, "unbounded (not identifiable)"
+    notes = list(notes)
+    if chosen:
+        prof = _with_profiles(problem, theta, rss, cov, keys, lo, hi, methods, chosen)
+        if prof.best_rss < rss - 0.01 * prof.s2:
+            notes.append(f"a chain that fits better than the optimum was met on the profile "
+                         f"(RSS lower by {(rss - prof.best_rss) / prof.s2:.3g} s^2): the data leave the fit ambiguous")
+    return methods, notes
+
+
 def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Sequence[str],
               fixed: Mapping[str, float], template: Device, n_starts: int,
-              notes: Sequence[str] = (), alternatives: Sequence[np.ndarray] = ()) -> ChainFit:
+              notes: Sequence[str] = (), alternatives: Sequence[np.ndarray] = (),
+              intervals: str = "auto") -> ChainFit:
     """Assemble the :class:`ChainFit` (module doc) from the solver's optimum; ``alternatives`` are
-    other local optima of the multi-start (see :func:`widen_to_equivalent_optima`)."""
+    other local optima of the multi-start (see :func:`widen_to_equivalent_optima`); ``intervals``
+    chooses Wald or profile-likelihood intervals (:func:`profile_selection`)."""
     theta = np.zeros(0) if sol is None else np.asarray(sol.x, float)
     r = problem.residual(theta)
     rss = float(r @ r)
@@ -133,17 +212,25 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
     sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
         corr = cov / np.outer(sd, sd)
+    methods, notes = _choose_intervals(problem, theta, rss, cov, corr, keys, s, fx, lo, hi, intervals, notes)
     chain: ChainParameters = problem.chains(theta)
     n = chain.n
     device = chain.device(0, template)
     lo, hi, moved = widen_to_equivalent_optima(keys, problem, lo, hi, rss, p, alternatives)
-    bad = tuple(k for k, sk, f in zip(keys, s, fx) if not f and (not (sk <= _WIDE) or k in moved))
+    for k in moved:
+        methods[list(keys).index(k)] += " + other optima"
+    bad = tuple(k for k, sk, f, m, a, b in zip(keys, s, fx, methods, lo, hi) if not f and (
+        (not (sk <= _WIDE) and not m.startswith("profile")) or k in moved or "unbounded" in m
+        or not b <= 10.0 * a))
     measured = {(m.quantity, m.boundary) for m in problem.measurements}
     sugg = {k: suggestion(k, n, measured) for k in bad}
     if moved:
         notes = [*notes, f"other local optima fit the data as well (within the 95 % likelihood-ratio bound); "
                  f"the intervals of {', '.join(sorted(moved))} are widened to include them"]
-    warnings = list(notes) + [f"{k} is not identifiable from these measurements: {sugg[k]}" for k in bad]
+    unbounded = {k for k, m in zip(keys, methods) if "unbounded" in m}
+    warnings = list(notes) + [f"{k} is not identifiable from these measurements"
+                              f"{' (its 95 % interval is unbounded)' if k in unbounded else ''}: {sugg[k]}"
+                              for k in bad]
     converged = sol is None or sol.status > 0
     if not converged:
         warnings.append(f"the optimizer stopped before convergence: {sol.message}")
@@ -156,4 +243,5 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
                     residual=math.sqrt(rss / R), cost=rss / 2, rss=rss, aic=aic, bic=bic, n_residuals=R,
                     dof=R - p, responses=responses, measurements=problem.measurements, non_identifiable=bad,
                     suggestions=sugg, warnings=tuple(warnings), converged=converged,
-                    evaluations=0 if sol is None else int(sol.nfev), starts=n_starts)
+                    evaluations=0 if sol is None else int(sol.nfev), starts=n_starts,
+                    interval_methods=tuple(methods))

@@ -7,10 +7,13 @@ and, optionally, the path of a CSV of hardware trials (columns ``b``, ``k``, ``s
 
     "controller": {"velocity_filter": {"kind": "lowpass1", "cutoff": 188.5},
                    "b_range": {"min": 0.1, "max": 100.0, "points": 100},
-                   "trials": "trials.csv"}
+                   "trials": "trials.csv", "encoder_resolution": 1e-5, "force_noise": 0.1}
 
 Every key is optional (a missing ``velocity_filter`` is the backward difference, a missing
-``b_range`` the default 0.1-100 N s/m at 100 points).  Errors are :class:`ProfileError` at the
+``b_range`` the default 0.1-100 N s/m at 100 points).  ``encoder_resolution`` (m, at the handle)
+turns on the noise criterion of the region (:mod:`analysis.sampled.velocity_noise`: a wall
+damping whose quantization force noise exceeds ``force_noise``, N rms, default 0.1, is not
+renderable); ``force_noise`` needs ``encoder_resolution``.  Files without them load unchanged.  Errors are :class:`ProfileError` at the
 JSON path, e.g. ``$.controller.velocity_filter.cutoff``.
 
 Numerics only: this module never imports Qt.
@@ -27,6 +30,7 @@ from typing import Any
 from analysis.chain.velocity_filter import BACKWARD, VelocityFilter
 from analysis.errors import ValidationError
 from analysis.profiles.errors import ProfileError
+from analysis.sampled.velocity_noise import ENCODER_RESOLUTION, FORCE_NOISE
 
 __all__ = ["ControllerSection", "DEFAULT_B_RANGE", "DEFAULT_B_POINTS", "parse_controller"]
 
@@ -34,7 +38,7 @@ __all__ = ["ControllerSection", "DEFAULT_B_RANGE", "DEFAULT_B_POINTS", "parse_co
 DEFAULT_B_RANGE = (0.1, 100.0)
 DEFAULT_B_POINTS = 100
 _MAX_B_POINTS = 1000
-_KEYS = ("velocity_filter", "b_range", "trials")
+_KEYS = ("velocity_filter", "b_range", "trials", "encoder_resolution", "force_noise")
 
 
 @dataclass(frozen=True)
@@ -42,13 +46,17 @@ class ControllerSection:
     """The controller as built: velocity filter, the region's B range (N s/m) and a trials file.
 
     ``b_range`` is ``(min, max)`` with ``0 < min < max`` finite; ``b_points`` in 2..1000;
-    ``trials`` a path (relative paths are relative to the working directory) or ``None``.
+    ``trials`` a path (relative paths are relative to the working directory) or ``None``;
+    ``encoder_resolution`` (m) and ``force_noise`` (N rms) the optional noise criterion (``None``:
+    off; ``force_noise`` ``None`` with a resolution is the default 0.1 N).
     """
 
     velocity_filter: VelocityFilter = field(default=BACKWARD)
     b_range: tuple[float, float] = DEFAULT_B_RANGE
     b_points: int = DEFAULT_B_POINTS
     trials: str | None = None
+    encoder_resolution: float | None = None
+    force_noise: float | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.velocity_filter, VelocityFilter):
@@ -65,6 +73,13 @@ class ControllerSection:
             raise ValidationError("b_points", f"an integer from 2 to {_MAX_B_POINTS}", n)
         if self.trials is not None and (not isinstance(self.trials, str) or not self.trials.strip()):
             raise ValidationError("trials", "a non-empty path string or null", self.trials)
+        if self.encoder_resolution is not None:
+            object.__setattr__(self, "encoder_resolution",
+                               ENCODER_RESOLUTION("encoder_resolution", self.encoder_resolution))
+        if self.force_noise is not None:
+            if self.encoder_resolution is None:
+                raise ValidationError("force_noise", "null unless encoder_resolution is given", self.force_noise)
+            object.__setattr__(self, "force_noise", FORCE_NOISE("force_noise", self.force_noise))
 
     def check(self, sample_time: float) -> None:
         """Raises ValidationError (field ``cutoff``) when the filter's cut-off is above Nyquist."""
@@ -82,6 +97,9 @@ class ControllerSection:
         }
         if self.trials is not None:
             out["trials"] = self.trials
+        for key in ("encoder_resolution", "force_noise"):
+            if getattr(self, key) is not None:
+                out[key] = getattr(self, key)
         return out
 
 
@@ -127,4 +145,14 @@ def parse_controller(data: object) -> ControllerSection:
     trials = data.get("trials")
     if trials is not None and (not isinstance(trials, str) or not trials.strip()):
         raise ProfileError.at("$.controller.trials", "a non-empty path string or null", trials)
-    return ControllerSection(velocity_filter=vf, b_range=b_range, b_points=points, trials=trials)
+    noise = {}
+    for key, rule in (("encoder_resolution", ENCODER_RESOLUTION), ("force_noise", FORCE_NOISE)):
+        if data.get(key) is not None:
+            try:
+                noise[key] = rule(key, data[key])
+            except ValidationError as err:
+                raise ProfileError.at(f"$.controller.{key}", err.allowed, err.value) from err
+    if "force_noise" in noise and "encoder_resolution" not in noise:
+        raise ProfileError.at("$.controller.force_noise", "null unless encoder_resolution is given",
+                              noise["force_noise"])
+    return ControllerSection(velocity_filter=vf, b_range=b_range, b_points=points, trials=trials, **noise)

@@ -15,6 +15,8 @@ for the real sampled loop:
 * :func:`zwidth_region` / :func:`optimal_filter` -- Colgate & Brown's (B, K) Z-width region,
   its area and the velocity-filter cut-off that maximizes it (Chawda et al.);
   :func:`load_trials` / :func:`score_trials` -- hardware trials against the region;
+  :func:`estimate_noise` / :func:`noise_gain` -- the encoder-quantization noise of the velocity
+  estimate and the damping it limits (the noise side of Chawda et al.'s trade-off);
 * :func:`passivity_comparison` -- a too-stiff wall with and without Hannaford & Ryu's passivity
   controller (``SimulationOptions.passivity_control``) and behind an eq. (9) coupling;
 * :func:`simulate` -- the nonlinear time-domain simulator with scenario presets.
@@ -102,6 +104,7 @@ __all__ = [
     "LoopSpec",
     "MAP_PARAMETERS",
     "MeasuredTrials",
+    "DEFAULT_FORCE_NOISE",
     "OPTIMIZER_AREA",
     "PENALTY",
     "PassivityComparison",
@@ -116,6 +119,7 @@ __all__ = [
     "Termination",
     "TrialScore",
     "VelocityFilter",
+    "VelocityNoise",
     "Verdict",
     "WorstCase",
     "ZWidthRegion",
@@ -128,6 +132,7 @@ __all__ = [
     "default_environments",
     "default_grasps",
     "default_terminations",
+    "estimate_noise",
     "detect",
     "discretize_zoh",
     "display_loop",
@@ -136,6 +141,8 @@ __all__ = [
     "hbfd_options",
     "linear_stability_limit",
     "load_trials",
+    "noise_gain",
+    "noise_limited_damping",
     "optimal_filter",
     "passivity_closed_form",
     "passivity_comparison",
@@ -161,6 +168,8 @@ _LAZY = {
     **dict.fromkeys(("linear_stability_limit", "passivity_closed_form", "passivity_limit", "passivity_limits",
                      "required_damping", "rigid_stability_polynomial", "virtual_wall"), ".passivity"),
     **dict.fromkeys(("OPTIMIZER_AREA", "ZWidthRegion", "zwidth_region"), ".zwidth"),
+    **dict.fromkeys(("DEFAULT_FORCE_NOISE", "VelocityNoise", "noise_gain", "noise_limited_damping",
+                     "estimate_noise"), ".velocity_noise"),
     **dict.fromkeys(("ComparisonRun", "PassivityComparison", "passivity_comparison"), ".pc_compare"),
     **dict.fromkeys(("FilterOptimum", "MeasuredTrials", "TrialScore", "load_trials", "optimal_filter",
                      "score_trials"), ".trials"),

@@ -36,7 +36,14 @@ from analysis.chain.device import Device
 from analysis.chain.velocity_filter import FILTER_KINDS, VelocityFilter
 from analysis.checks import choice
 from analysis.errors import ValidationError
-from analysis.sampled.zwidth import OPTIMIZER_AREA, ZWidthRegion, check_b_values, region_area, stiffness_limits
+from analysis.sampled.velocity_noise import DEFAULT_FORCE_NOISE, noise_limited_damping
+from analysis.sampled.zwidth import (
+    OPTIMIZER_AREA,
+    ZWidthRegion,
+    check_b_values,
+    noise_limited_stiffness,
+    region_area,
+)
 
 __all__ = ["FilterOptimum", "optimal_filter", "MeasuredTrials", "load_trials", "TrialScore", "score_trials"]
 
@@ -49,7 +56,9 @@ class FilterOptimum:
 
     ``areas[i]`` belongs to ``cutoffs[i]``; ``cutoff``/``area`` is the refined optimum;
     ``backward_area`` is the area with the raw backward difference, for comparison;
-    ``measure`` names the area maximized (``"area_linear"`` or ``"area_log"``).
+    ``measure`` names the area maximized (``"area_linear"`` or ``"area_log"``);
+    ``encoder_resolution`` (m) and ``force_noise`` (N rms) are the noise criterion's
+    (:mod:`analysis.sampled.velocity_noise`; ``None`` when off).
     """
 
     kind: str
@@ -59,6 +68,8 @@ class FilterOptimum:
     area: float
     backward_area: float
     measure: str
+    encoder_resolution: float | None = None
+    force_noise: float | None = None
 
     @property
     def interior(self) -> bool:
@@ -70,7 +81,8 @@ def optimal_filter(device: Device, kind: str = "lowpass1", cutoffs: np.ndarray |
                    b: np.ndarray | None = None, delay_samples: int = 0, measure: str = OPTIMIZER_AREA,
                    k_range: tuple[float, float] = (1.0, 1e9), refine_iterations: int = 6, per_decade: int = 12,
                    progress: Callable[[int, int], None] | None = None,
-                   cancelled: Callable[[], bool] | None = None, **region_options) -> FilterOptimum | None:
+                   cancelled: Callable[[], bool] | None = None, encoder_resolution: float | None = None,
+                   force_noise: float | None = None, **region_options) -> FilterOptimum | None:
     """Area of the Z-width region against the cut-off of a ``kind`` filter, and its maximum.
 
     Default cut-offs: 30 from 2 pi 5 rad/s to 0.9 of Nyquist.  ``progress(done, total)`` after
@@ -80,16 +92,21 @@ def optimal_filter(device: Device, kind: str = "lowpass1", cutoffs: np.ndarray |
     than 10^(1/12), 21 %, below the first crossing could be missed; each K_max is bracketed to
     1e-5 relative, plenty for an area).
     ``region_options`` go to :func:`~analysis.sampled.zwidth.stiffness_limits` (termination ...).
+    ``encoder_resolution`` (m) turns on the noise criterion of
+    :func:`~analysis.sampled.zwidth.zwidth_region` (B above ``F_noise/sigma_v`` not renderable;
+    ``force_noise`` N rms, default 0.1): the noise side of Chawda et al.'s trade-off.
     """
     choice("measure", measure, _AREAS, allowed=" or ".join(_AREAS))
     cs = _cutoffs(kind, cutoffs, device.sample_time)
     bs = check_b_values(b)
     total = cs.size + refine_iterations + 1
+    noise_limited_damping(None, device.sample_time, encoder_resolution, force_noise)  # validate once
 
     def area(cutoff: float | None) -> float:
         vf = None if cutoff is None else VelocityFilter(kind, cutoff)
-        k = stiffness_limits(device, bs, delay_samples, vf, k_range=k_range, per_decade=per_decade,
-                             rtol=1e-5, **region_options)
+        bn = noise_limited_damping(vf, device.sample_time, encoder_resolution, force_noise)
+        k = noise_limited_stiffness(device, bs, bn, delay_samples, vf, k_range=k_range, per_decade=per_decade,
+                                    rtol=1e-5, **region_options)
         return region_area(bs, k, k_range[0], k_range[1])[_AREAS.index(measure)]
 
     areas = np.empty(cs.size)
@@ -105,8 +122,10 @@ def optimal_filter(device: Device, kind: str = "lowpass1", cutoffs: np.ndarray |
     back = area(None)
     if progress is not None:
         progress(total, total)
+    fn = None if encoder_resolution is None else DEFAULT_FORCE_NOISE if force_noise is None else float(force_noise)
     return FilterOptimum(kind=kind, cutoffs=cs, areas=areas, cutoff=best[0], area=best[1], backward_area=back,
-                         measure=measure)
+                         measure=measure, encoder_resolution=None if encoder_resolution is None
+                         else float(encoder_resolution), force_noise=fn)
 
 
 def _cutoffs(kind: str, cutoffs: np.ndarray | None, T: float) -> np.ndarray:

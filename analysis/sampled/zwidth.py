@@ -17,7 +17,12 @@ discretization), the first unstable coarse step rescanned at ``per_decade`` poin
 vectorized bracketing (false position alternating with halving, in log K) between the last
 stable and the first unstable point, keeping the stable end (conservative).  Stable islands
 above the first crossing are never reported; an unstable window narrower than a coarse step
-(10^(1/8), 33 %) below it can be missed.  States whose rows vanish in every closed-loop matrix
+(10^(1/8), 33 %) below it can be missed.  Where ``k_range[0]`` itself is unstable the row is 0,
+even when a window of K above it is stable (conservative; e.g. a 0.05 kg, 2 N s/m rigid device
+with a 1 Hz ``butter2`` at B = 50 N s/m and one sample of delay is stable for K in about
+[35, 1300] N/m only).  On a rigid device with the backward difference the region ends at the
+damping limit ``B_max = (2m/T) tan(pi/(4(d+1)))`` (ideal mass, d samples of delay), where the
+K -> 0 loop ``z^(d+1)(z - 1) + (BT/2m)(z + 1)`` reaches the unit circle.  States whose rows vanish in every closed-loop matrix
 (the god-object's held ``x_e``, ``v_e``) are dropped before the eigenvalues: they only add
 eigenvalues at 0.
 
@@ -34,6 +39,13 @@ d log10 B`` (decades^2, ``K_floor = k_range[0]``), both by the trapezoid rule on
 B grid, with ``K_max`` capped at ``k_range[1]``.  :func:`~analysis.sampled.trials.optimal_filter`
 maximizes ``area_linear`` by default (:data:`OPTIMIZER_AREA`), the area of Colgate & Brown's and
 Chawda et al.'s linear plots.
+
+Noise criterion (optional, off by default): with ``encoder_resolution`` (m) the damping's force
+noise ``B sigma_v`` of the filtered estimate (:mod:`analysis.sampled.velocity_noise`: white
+quantization noise ``q^2/12`` through ``H_f(z)(1 - z^{-1})/T``) must stay within ``force_noise``
+(N rms, default 0.1): every B above ``b_noise = F_noise/sigma_v`` gets ``K_max = 0`` (not
+renderable).  This is the noise side of Chawda et al.'s trade-off; it makes the area fall at high
+cut-offs (noise) as the lag makes it fall at low ones.
 """
 
 from __future__ import annotations
@@ -51,8 +63,9 @@ from analysis.errors import ValidationError
 from analysis.sampled.loop import LoopSpec, closed_loop_matrices, discretize_zoh, plant_matrices, spectral_radius
 from analysis.sampled.passivity import passivity_limits
 from analysis.sampled.terminations import HANDS_OFF, Termination, god_object_wall
+from analysis.sampled.velocity_noise import DEFAULT_FORCE_NOISE, noise_limited_damping
 
-__all__ = ["ZWidthRegion", "zwidth_region", "stiffness_limits", "region_area", "check_b_values", "OPTIMIZER_AREA",
+__all__ = ["ZWidthRegion", "zwidth_region", "stiffness_limits", "noise_limited_stiffness", "region_area", "check_b_values", "OPTIMIZER_AREA",
            "DEFAULT_B"]
 
 _UNSTABLE = 1.0 + 1e-12
@@ -71,7 +84,9 @@ class ZWidthRegion:
     unstable, 0 where ``k_floor`` already is); ``k_passive[i]``: Colgate-Schenkel's largest
     passive K of the rigid-body device (NaN where none); ``k_twoport[i]``: the eq. (9) limit at
     ``b_c = b[i]`` (NaN when not computed or infeasible).  ``area_linear`` and ``area_log``:
-    :func:`region_area` (the optimizer uses :data:`OPTIMIZER_AREA`).
+    :func:`region_area` (the optimizer uses :data:`OPTIMIZER_AREA`).  ``b_noise``: the
+    noise-limited damping of the noise criterion (N s/m; ``inf`` when it is off), above which
+    ``k_max`` is 0; ``force_noise``: its tolerance (N rms; ``None`` when off).
     """
 
     b: np.ndarray
@@ -84,6 +99,8 @@ class ZWidthRegion:
     velocity_filter: VelocityFilter
     k_floor: float
     k_ceiling: float
+    b_noise: float = math.inf
+    force_noise: float | None = None
 
     def stable(self, b: float, k: float) -> bool:
         """Whether ``(b, k)`` lies in the region (K_max interpolated linearly in log B)."""
@@ -177,6 +194,21 @@ def stiffness_limits(device: Device, b: np.ndarray, delay_samples: int = 0,
     return out
 
 
+def noise_limited_stiffness(device: Device, b: np.ndarray, b_noise: float, delay_samples: int = 0,
+                            velocity_filter: VelocityFilter | None = None, **options) -> np.ndarray:
+    """:func:`stiffness_limits` with ``K_max = 0`` for every B above ``b_noise`` (not computed there).
+
+    ``b_noise = inf`` is exactly :func:`stiffness_limits` over all of ``b``.
+    """
+    b = np.asarray(b, float).reshape(-1)
+    if not math.isfinite(b_noise):
+        return stiffness_limits(device, b, delay_samples, velocity_filter, **options)
+    out, ok = np.zeros(b.size), b <= b_noise
+    if ok.any():
+        out[ok] = stiffness_limits(device, b[ok], delay_samples, velocity_filter, **options)
+    return out
+
+
 def _bracket(g: Callable[[np.ndarray], np.ndarray], safe: tuple[np.ndarray, np.ndarray],
              unsafe: tuple[np.ndarray, np.ndarray], tol: float = 1e-10) -> np.ndarray:
     """The safe end of ``[x_s, x_u]`` (``g <= 0`` at ``x_s``, ``> 0`` at ``x_u``) shrunk below ``tol``.
@@ -218,17 +250,19 @@ def region_area(b: np.ndarray, k: np.ndarray, k_floor: float, k_ceiling: float) 
 def zwidth_region(device: Device, b: np.ndarray | None = None, delay_samples: int = 0,
                   velocity_filter: VelocityFilter | None = None, *, termination: Termination | None = None,
                   implementation_delay: bool = False, k_range: tuple[float, float] = (1.0, 1e9),
-                  passive: bool = True,
-                  twoport_limit: Callable[[np.ndarray], np.ndarray] | None = None) -> ZWidthRegion:
+                  passive: bool = True, twoport_limit: Callable[[np.ndarray], np.ndarray] | None = None,
+                  encoder_resolution: float | None = None, force_noise: float | None = None) -> ZWidthRegion:
     """The (B, K) region of the wall ``K + B V(z)`` (module docstring), default B 0.1-100 N s/m.
 
     ``passive``: also compute the Colgate-Schenkel region of the rigid-body device;
-    ``twoport_limit(b) -> k`` supplies eq. (9)'s limit (NaN otherwise).
+    ``twoport_limit(b) -> k`` supplies eq. (9)'s limit (NaN otherwise).  ``encoder_resolution``
+    (m) turns on the noise criterion with tolerance ``force_noise`` (N rms, default 0.1).
     """
     bs = check_b_values(b)
     vf = BACKWARD if velocity_filter is None else velocity_filter
-    kmax = stiffness_limits(device, bs, delay_samples, velocity_filter, termination=termination,
-                            implementation_delay=implementation_delay, k_range=k_range)
+    bn = noise_limited_damping(vf, device.sample_time, encoder_resolution, force_noise)
+    kmax = noise_limited_stiffness(device, bs, bn, delay_samples, velocity_filter, termination=termination,
+                                   implementation_delay=implementation_delay, k_range=k_range)
     kpas = np.full(bs.size, np.nan)
     if passive:
         kpas = passivity_limits(device.total_mass, device.total_ground_damping, device.sample_time, bs,
@@ -237,4 +271,6 @@ def zwidth_region(device: Device, b: np.ndarray | None = None, delay_samples: in
     lin, log = region_area(bs, kmax, float(k_range[0]), float(k_range[1]))
     return ZWidthRegion(b=bs, k_max=kmax, k_passive=kpas, k_twoport=k2, area_linear=lin, area_log=log,
                         delay_samples=int(delay_samples), velocity_filter=vf, k_floor=float(k_range[0]),
-                        k_ceiling=float(k_range[1]))
+                        k_ceiling=float(k_range[1]), b_noise=bn,
+                        force_noise=None if encoder_resolution is None else
+                        (DEFAULT_FORCE_NOISE if force_noise is None else float(force_noise)))

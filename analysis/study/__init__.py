@@ -68,13 +68,14 @@ from .wall import (
     wall_tradeoff,
 )
 from .citations import REFERENCES, Reference, citation_text
-from .labels import HOLD_LABELS, PARAMETER_LABELS, PLANT_LABELS
+from .labels import HOLD_LABELS, PARAMETER_LABELS, PLANT_LABELS, SCENARIO_TIPS, SCENARIO_TITLES, scenario_title
 from .summary import SUMMARY_VERSION, design_summary, format_design, format_summary, summarize
 from .zwidth import (
     OPTIMUM_CUTOFFS,
     ZWidthStudy,
     controller_section,
     filter_optimum,
+    noise_options,
     optimum_kind,
     profile_trials,
     region_b,
@@ -101,7 +102,7 @@ from .identify import (
 )
 
 __all__ = [
-    "HOLD_LABELS", "PARAMETER_LABELS", "PLANT_LABELS",
+    "HOLD_LABELS", "PARAMETER_LABELS", "PLANT_LABELS", "SCENARIO_TIPS", "SCENARIO_TITLES", "scenario_title",
     "ADMITTANCE", "DISPLAY_KINDS", "IMPEDANCE", "DisplayKind", "Gain", "display_kind",
     "DIGITS", "QUANTITIES", "Quantity", "format_number", "quantity",
     "DESIGN_KEYS", "HEADLINE_KEYS", "Headline", "designs", "headline",
@@ -115,7 +116,8 @@ __all__ = [
     "SUMMARY_VERSION", "design_summary", "format_design", "format_summary", "summarize",
     "BodeData", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "identify_chain", "load_measurements", "parameter_rows",
     "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements",
-    "OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "filter_optimum", "optimum_kind", "profile_trials",
+    "OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "filter_optimum", "noise_options", "optimum_kind",
+    "profile_trials",
     "region_b", "trial_score", "twoport_limit", "wall_edits", "region_wall", "with_filter", "zwidth_region",
     "profile_filter",
     "REFERENCES", "Reference", "citation_text",

@@ -133,13 +133,14 @@ def _order_table(orders: list[int], rows: list[tuple[ChainFit | None, str | None
 
 
 def parameter_rows(fit: ChainFit) -> list[dict]:
-    """The parameter table as plain rows: key, value, std_error, low, high, fixed, identifiable
-    (numbers as floats) plus ``text`` (the same numbers printed by :func:`format_number`)."""
+    """The parameter table as plain rows: key, value, std_error, low, high, fixed, identifiable,
+    method (how the interval was found: wald, profile, unbounded ..., fixed; numbers as floats)
+    plus ``text`` (the same numbers printed by :func:`format_number`)."""
     out = []
     for p in fit.parameters:
         text = {name: format_number(getattr(p, name)) for name in ("value", "std_error", "low", "high")}
         out.append({"key": p.key, "value": p.value, "std_error": p.std_error, "low": p.low, "high": p.high,
-                    "fixed": p.fixed, "identifiable": p.identifiable, "text": text})
+                    "fixed": p.fixed, "identifiable": p.identifiable, "method": p.method, "text": text})
     return out
 
 

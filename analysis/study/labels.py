@@ -4,7 +4,7 @@ and the report."""
 
 from __future__ import annotations
 
-__all__ = ["PARAMETER_LABELS", "HOLD_LABELS", "PLANT_LABELS"]
+__all__ = ["PARAMETER_LABELS", "HOLD_LABELS", "PLANT_LABELS", "SCENARIO_TITLES", "SCENARIO_TIPS", "scenario_title"]
 
 #: Map and chart parameters: (symbol, unit).
 PARAMETER_LABELS: dict[str, tuple[str, str]] = {
@@ -23,3 +23,22 @@ HOLD_LABELS = {
     "discrete": "exact sampled loop (discrete)",
 }
 PLANT_LABELS = {"rigid": "rigid handle: m, b below", "chain": "the profile's device chain"}
+
+#: The built-in simulation scenarios (``SimulationSection.scenario.name``), for people.
+SCENARIO_TITLES = {
+    "impedance_worst_case": "Impedance worst case",
+    "admittance_worst_case": "Admittance worst case",
+    "wall_push": "Wall push",
+    "free_sliding": "Free sliding",
+}
+SCENARIO_TIPS = {
+    "impedance_worst_case": "Firm grasp pushes the handle into a rigid wall, then lets go at the release time",
+    "admittance_worst_case": "Rigid grasp, a short push in free motion",
+    "wall_push": "A force step pushes the handle into a wall and holds it there",
+    "free_sliding": "A push along free space, then coasting",
+}
+
+
+def scenario_title(name: str) -> str:
+    """The scenario's readable name (a custom name is shown as it is)."""
+    return SCENARIO_TITLES.get(name, name)

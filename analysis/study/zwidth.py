@@ -13,6 +13,10 @@ cut-off and its maximum follow Chawda, Celik & O'Malley (ASME JDSMC 137(2), 2015
 The wall of the region is the impedance display's virtual coupling of the profile: B is
 ``bc`` (N s/m) and K is ``kc`` (N/m), the gains :func:`analysis.sampled.critical_stiffness`
 analyses at the profile's b_c (:func:`wall_edits`).
+
+When the profile's controller section names an ``encoder_resolution`` (and optionally a
+``force_noise``), the region and the optimum apply the noise criterion of
+:mod:`analysis.sampled.velocity_noise` (:func:`noise_options`).
 """
 
 from __future__ import annotations
@@ -41,7 +45,8 @@ from analysis.study.displays import profile_filter
 from analysis.twoport.impedance import ImpedanceDisplay
 from analysis.twoport.results import Cancelled, Progress
 
-__all__ = ["OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "region_b", "twoport_limit", "zwidth_region",
+__all__ = ["OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "region_b", "noise_options", "twoport_limit",
+           "zwidth_region",
            "filter_optimum", "optimum_kind", "profile_trials", "trial_score", "wall_edits", "region_wall", "with_filter"]
 
 #: Number of cut-offs of the optimum curve (issue 15: 30 in <= 10 s on the worker).
@@ -68,6 +73,12 @@ def region_b(profile: Profile) -> np.ndarray:
     return np.geomspace(sec.b_range[0], sec.b_range[1], sec.b_points)
 
 
+def noise_options(profile: Profile) -> dict[str, float | None]:
+    """The noise criterion's keywords from the section: ``encoder_resolution`` (m), ``force_noise`` (N)."""
+    sec = controller_section(profile)
+    return {"encoder_resolution": sec.encoder_resolution, "force_noise": sec.force_noise}
+
+
 def twoport_limit(profile: Profile) -> Callable[[np.ndarray], np.ndarray]:
     """Eq. (9)'s edge: ``b -> largest k_c`` of ``ImpedanceDisplay(device, velocity_filter=f)``
     (NaN where eq. 9 has no feasible k_c)."""
@@ -89,7 +100,8 @@ def zwidth_region(profile: Profile, *, progress: Progress | None = None,
         return None
     d, impl = delays(profile)
     r = sampled_zwidth_region(profile.device, region_b(profile), d, profile_filter(profile),
-                              implementation_delay=impl, twoport_limit=twoport_limit(profile))
+                              implementation_delay=impl, twoport_limit=twoport_limit(profile),
+                              **noise_options(profile))
     if progress is not None:
         progress(1, 1)
     return None if cancelled is not None and cancelled() else r
@@ -108,7 +120,7 @@ def filter_optimum(profile: Profile, kind: str | None = None, *, cutoffs: np.nda
     d, impl = delays(profile)
     return optimal_filter(profile.device, optimum_kind(profile) if kind is None else kind, cutoffs,
                           b=region_b(profile), delay_samples=d, implementation_delay=impl, progress=progress,
-                          cancelled=cancelled)
+                          cancelled=cancelled, **noise_options(profile))
 
 
 def profile_trials(profile: Profile, base: str | os.PathLike | None = None) -> MeasuredTrials | None:

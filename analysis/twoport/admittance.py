@@ -23,7 +23,7 @@ import numpy as np
 
 from analysis.chain import grids
 from analysis.chain.response import chain_response
-from analysis.chain.velocity_filter import VelocityFilter
+from analysis.chain.velocity_filter import VelocityFilter, display_filter
 from analysis.chain.discretize import check_frequencies, held_spring_damper, mass_damper_admittance
 from analysis.twoport.display_base import APPARENT_FREQUENCY, DisplayBase, safe_ratio
 from analysis.chain.limits import LIMITS
@@ -70,12 +70,7 @@ class AdmittanceDisplay(DisplayBase):
         super().__init__(device)
         self.kp = LIMITS["kp"]("kp", kp)  # the physical ranges of analysis.chain.limits
         self.kd = LIMITS["kd"]("kd", kd)
-        vf = velocity_filter
-        if vf is not None and not isinstance(vf, VelocityFilter):
-            raise ValidationError("velocity_filter", "a VelocityFilter or None", vf)
-        if vf is not None:
-            vf.check(device.sample_time)
-        self.velocity_filter = None if vf is None or vf.is_backward else vf
+        self.velocity_filter = display_filter(velocity_filter, device.sample_time)
 
     def modes(self) -> np.ndarray:
         return grids.device_modes(self.device, actuator_stiffness=self.kp)

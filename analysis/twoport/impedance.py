@@ -39,7 +39,7 @@ from analysis.chain.continued_fraction import (
     terminated_handle_impedance,
 )
 from analysis.chain.response import chain_response
-from analysis.chain.velocity_filter import VelocityFilter
+from analysis.chain.velocity_filter import VelocityFilter, display_filter
 from analysis.chain.discretize import check_frequencies, spring_damper, theta_of
 from analysis.twoport.display_base import APPARENT_FREQUENCY, DisplayBase, FrequencyGrid, safe_ratio
 from analysis.twoport.results import BoundResult, Cancelled, Progress, StabilityResult, StiffnessChart, StiffnessDesign, TwoPort
@@ -161,14 +161,7 @@ class ImpedanceDisplay(DisplayBase):
     def __init__(self, device, velocity_filter: VelocityFilter | None = None):
         super().__init__(device)
         self._apparent: tuple[complex, float] | None = None
-        vf = velocity_filter
-        if vf is not None and not isinstance(vf, VelocityFilter):
-            from analysis.errors import ValidationError
-
-            raise ValidationError("velocity_filter", "a VelocityFilter or None", vf)
-        if vf is not None:
-            vf.check(device.sample_time)
-        self.velocity_filter = None if vf is None or vf.is_backward else vf
+        self.velocity_filter = display_filter(velocity_filter, device.sample_time)
 
     def modes(self) -> np.ndarray:
         return grids.device_modes(self.device)

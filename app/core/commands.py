@@ -18,7 +18,7 @@ from analysis.chain.limits import DAMPING_RATIO
 
 from app.core.model import ProfileModel
 
-__all__ = ["SetFields", "Editor", "FIELD_LABELS", "describe_error"]
+__all__ = ["SetFields", "Editor", "FIELD_LABELS", "describe_error", "UNDO_LIMIT"]
 
 FIELD_LABELS: dict[str, str] = {
     "masses": "mass",
@@ -41,6 +41,11 @@ FIELD_LABELS: dict[str, str] = {
 }
 
 _MERGE_ID = 0x2A1D
+
+#: The undo history keeps the last this many steps (a whole drag is one step): each holds the
+#: old and new values of its fields (up to ~5 kB with a device), so an unbounded history would
+#: grow for as long as the window stays open.  Older steps are dropped, oldest first.
+UNDO_LIMIT = 1000
 
 
 def describe_error(err: Exception) -> str:

@@ -306,8 +306,8 @@ class ComputeGraph(QObject):
             return True
         return node.value_key == self.key_of(name)
 
-    def get(self, name: str) -> Any:
-        """The value of a synchronous node, computing it only if its key changed."""
+    def get(self, name: str, hold: bool = True) -> Any:
+        """A synchronous node's value, computed if its key changed (``live=False``: held in a drag unless not ``hold``)."""
         node = self._nodes[name]
         if node.asynchronous:
             raise TypeError(f"{name} is asynchronous: use request()")
@@ -315,9 +315,10 @@ class ComputeGraph(QObject):
             return node.value
         key = node.key(self.model.profile, node.params)
         if key != node.value_key:
-            node.calls += 1
-            node.value = node.func(self.model.profile, self.get)
-            node.value_key = key
+            if hold and not node.live and self.holding and node.value_key is not _NOTHING:
+                return self._hold(node, key)  # stays dirty: computed when the drag pauses or ends
+            node.calls, node.waiting = node.calls + 1, False
+            node.value, node.value_key = node.func(self.model.profile, self.get), key
         node.dirty = False
         return node.value
 

@@ -95,7 +95,9 @@ def build_graph(model: ProfileModel, runner: TaskRunner, chart_points: int = DES
         g.add(_display_node(kind))
     g.add(Node("stability", dev | GAIN_FIELDS, _stability_key, _stability))
     g.add(Node("stability_preview", dev | GAIN_FIELDS, _stability_key, _stability_preview))
-    g.add(Node("max_stiffness", dev | {"bc"}, lambda p, _: (p.device.key(), profile_filter(p), p.bc), _max_stiffness))
+    # the refined design at the current b_c (tens of ms): held back while a slider drag moves
+    g.add(Node("max_stiffness", dev | {"bc"}, lambda p, _: (p.device.key(), profile_filter(p), p.bc), _max_stiffness,
+               live=False))
     g.add(Node("design_chart", dev | {"display", "kp", "kd"}, _chart_key, _design_chart, asynchronous=True,
                params={**CHART_PARAMS, "points": chart_points}))
     g.add(Node("min_mass", dev | {"kp", "kd"}, lambda p, _: (p.device.key(), profile_filter(p), p.kp, p.kd), _min_mass,

@@ -1,9 +1,16 @@
 """The nodes of the transparency tab: the wall controller of Eom, Suh & Yi (section 3, Figs. 7-10).
 
 ``wall_design`` is the :class:`WallDesign` of the profile's wall section; ``wall_tradeoff`` (J and
-‖L‖∞ over B_c, eqs. 11 and 16-17, and the robust optimum) runs on the worker; ``wall_point``,
-``wall_step`` and ``wall_admittance`` are cheap and evaluated at the node parameter ``bc`` (the
-tab's current B_c, which is not a profile field).  Every node calls :mod:`analysis.study`.
+‖L‖∞ over B_c, eqs. 11 and 16-17, and the robust optimum) runs on the worker.  ``wall_point``
+(J and ‖L‖∞ at the current B_c: the markers and the summary), ``wall_admittance`` and ``wall_step``
+are evaluated at the node parameter ``bc`` (the tab's current B_c, which is not a profile field).
+Every node calls :mod:`analysis.study`.
+
+During a slider drag (:class:`~app.core.compute_graph.DragPause`) the cheap nodes follow every step
+(``wall_point`` ~5 ms, ``wall_admittance`` < 1 ms), while the two ``live=False`` nodes are held
+and catch up on the worker when the drag pauses or ends: the curves over B_c (up to ~0.2 s) and
+the step response (a 4000-step simulation of the sampled loop, ~6 ms: together with the point it
+would not fit in a 16 ms frame).
 """
 
 from __future__ import annotations
@@ -34,7 +41,7 @@ __all__ = ["DEFAULT_BC", "NODES", "AT_BC_NODES", "HOLD_LABELS", "PLANT_LABELS", 
            "WallTradeoff", "WallPoint", "WallAdmittances", "admittance_grid", "register"]
 
 NODES = ("wall_design", "wall_tradeoff", "wall_point", "wall_step", "wall_admittance")
-#: The nodes evaluated at the current B_c (node parameter ``bc``).
+#: The nodes evaluated at the current B_c (node parameter ``bc``); ``wall_step`` is asynchronous.
 AT_BC_NODES = ("wall_point", "wall_step", "wall_admittance")
 _INPUTS = frozenset({"wall"}) | frozenset(DEVICE_FIELDS)
 
@@ -52,6 +59,11 @@ def _tradeoff(profile: Profile, params: dict, progress: Progress, cancelled: Can
     return wall_tradeoff(profile, progress=progress, cancelled=cancelled)  # its own WallDesign, never shared
 
 
+def _step(profile: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> Any:
+    """The step response at the current B_c (Figs. 7, 10), on the worker: its own WallDesign."""
+    return wall_step(wall_design(profile), float(params["bc"]))
+
+
 def _at_bc_node(name: str, func: Callable[[Any, float], Any]) -> Node:
     """A synchronous node: ``func(design, bc)`` at its parameter ``bc`` (the tab's current B_c)."""
     params = {"bc": DEFAULT_BC}
@@ -67,5 +79,6 @@ def register(graph: ComputeGraph) -> None:
     graph.add(Node("wall_design", _INPUTS, _design_key, lambda p, _: wall_design(p)))
     graph.add(Node("wall_tradeoff", _INPUTS, _design_key, _tradeoff, asynchronous=True, live=False))
     graph.add(_at_bc_node("wall_point", wall_point))
-    graph.add(_at_bc_node("wall_step", wall_step))
+    graph.add(Node("wall_step", _INPUTS, _at_bc_key, _step, params={"bc": DEFAULT_BC}, asynchronous=True,
+                   live=False))
     graph.add(_at_bc_node("wall_admittance", wall_admittances))

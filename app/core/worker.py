@@ -99,11 +99,19 @@ class _Runnable(QRunnable):
         super().__init__()
         self._gil = gil
         self._priority = priority
-        self.setAutoDelete(False)
+        # autoDelete (Qt's default): the pool deletes the runnable after run().  Without it PySide's
+        # pool wrapper kept every runnable ever started, with its job's closure and profile (found
+        # by the GUI state machine's long run: about one runnable leaked per two steps).
         self._name, self._gen, self._fn, self._relay, self._stop = name, generation, fn, relay, stop
         self._mailbox, self._lock = mailbox, lock
 
     def run(self) -> None:
+        try:
+            self._run()
+        finally:  # PySide may still keep a few deleted wrappers: they must not keep the job's inputs
+            self._fn = self._stop = None
+
+    def _run(self) -> None:
         name, gen = self._name, self._gen
 
         def progress(done: int, total: int) -> None:

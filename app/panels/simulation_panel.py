@@ -28,7 +28,7 @@ from PySide6.QtWidgets import (
 
 from analysis import ValidationError
 from analysis.profiles.sections import SimulationSection
-from analysis.study import scenario_matches
+from analysis.study import SCENARIO_TIPS, SCENARIO_TITLES, scenario_matches
 from analysis.sampled import CLAMPED, FIRM_GRASP, HANDS_OFF, RIGID_GRASP, SCENARIOS, SimulationOptions, hbfd_options
 from analysis.sampled import scenario as preset
 
@@ -41,18 +41,7 @@ __all__ = ["SimulationPanel", "current_section", "GRASPS", "SCENARIO_TITLES", "w
            "hbfd_section", "ideal_section"]
 
 GRASPS = {"hands-off": HANDS_OFF, "firm grasp": FIRM_GRASP, "rigid grasp": RIGID_GRASP, "clamped": CLAMPED}
-SCENARIO_TITLES = {
-    "impedance_worst_case": "Impedance worst case",
-    "admittance_worst_case": "Admittance worst case",
-    "wall_push": "Wall push",
-    "free_sliding": "Free sliding",
-}
-SCENARIO_TIPS = {
-    "impedance_worst_case": "Firm grasp pushes the handle into a rigid wall, then lets go at the release time",
-    "admittance_worst_case": "Rigid grasp, a short push in free motion",
-    "wall_push": "A force step pushes the handle into a wall and holds it there",
-    "free_sliding": "A push along free space, then coasting",
-}
+
 
 
 def _fmt(x: float) -> str:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import datetime as _dt
 import html
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -22,6 +23,7 @@ from app.report.identify_section import identification_sections
 from app.report.zwidth_section import zwidth_sections
 from analysis.study import (
     HEADLINE_KEYS,
+    PARAMETER_LABELS,
     Headline,
     design_chart,
     designs,
@@ -29,12 +31,13 @@ from analysis.study import (
     format_number,
     map_params,
     map_point,
+    scenario_title,
     simulation,
     simulation_section,
     stability_map,
 )
 
-__all__ = ["ReportContent", "Section", "Row", "ReportCancelled", "gather", "num", "app_version", "METHODS"]
+__all__ = ["ReportContent", "Section", "Row", "ReportCancelled", "gather", "num", "symbol_html", "app_version", "METHODS"]
 
 DIGITS = 6
 
@@ -43,10 +46,11 @@ class ReportCancelled(Exception):
     pass
 
 
-def num(x: Any, digits: int = DIGITS) -> str:
+def num(x: Any, digits: int = DIGITS, *, rich: bool = False) -> str:
     """A number as the report prints it (``inf`` -> ``unbounded``, ``None`` -> ``infeasible``):
-    :func:`analysis.study.format_number`, the rule the CLI and the GUI use too."""
-    return format_number(x, digits)
+    :func:`analysis.study.format_number`, the rule the CLI and the GUI use too.  ``rich``: HTML
+    powers of ten (``4.8×10<sup>−8</sup>``) for the page; the plain text is for the number table."""
+    return format_number(x, digits, rich=rich)
 
 
 def app_version() -> str:
@@ -114,14 +118,22 @@ METHODS = (
     "<i>B</i><sub>c</sub>. Where a profile has a <i>simulation</i> section, the exact sampled loop (ZOH, "
     "optional delay) gives the spectral-radius stability map (&rho; &lt; 1 is stable) and the nonlinear "
     "time-domain scenario.",
-    f"References: {citations.ADAMS.html()} {citations.EOM.html()}",
+    "<b>References</b>",
+    f"[1] {citations.ADAMS.html()}",
+    f"[2] {citations.EOM.html()}",
 )
+
+
+def symbol_html(name: str) -> str:
+    """A swept parameter's symbol in HTML (``kobj`` -> k<sub>obj</sub>)."""
+    text = html.escape(PARAMETER_LABELS.get(name, (name, ""))[0])
+    return re.sub(r"_(\w+)", r"<sub>\1</sub>", text)
 
 
 def _row(numbers: dict, key: str, label: str, symbol: str, value: Any, unit: str = "") -> Row:
     text = num(value)
     numbers[key] = (None if value is None else float(value), text)
-    return Row(label, symbol, text, unit)
+    return Row(label, symbol, num(value, rich=True), unit)
 
 
 def _device_rows(profile: Profile, numbers: dict) -> tuple[Row, ...]:
@@ -162,7 +174,7 @@ def _sampled(profile: Profile, res: dict, numbers: dict) -> Section | None:
     res["simulation"] = out
     stable_share = float(np.mean(smap.spectral_radius <= 1.0))
     rows = (
-        Row("scenario", "", "", html.escape(str(sc.name))),
+        Row("scenario", "", "", html.escape(scenario_title(str(sc.name)))),
         _row(numbers, "simulation.duration", "duration", "", float(out.t[-1]), "s"),
         Row("verdict", "", html.escape(out.verdict.kind), html.escape(out.verdict.reason)),
         _row(numbers, "simulation.peak_position", "largest |handle position|", "",
@@ -175,7 +187,7 @@ def _sampled(profile: Profile, res: dict, numbers: dict) -> Section | None:
     n = params["points"]
     return Section("Sampled-data checks", (
         "The exact sampled loop (zero-order hold, the profile's delays) on the app's "
-        f"{n}&times;{n} stability map ({html.escape(params['x'])} &times; {html.escape(params['y'])}), and the "
+        f"{n}&times;{n} stability map ({symbol_html(params['x'])} &times; {symbol_html(params['y'])}), and the "
         "profile's scenario simulated in the time domain.",), rows)
 
 
@@ -239,7 +251,7 @@ def _headline_rows(h: Headline, numbers: dict, table: dict[str, tuple[str, str]]
         q, value = h.quantity(key), h.value(key)
         text = q.number(value)
         numbers[table[key][0]] = (None if value is None else float(value), text)
-        rows.append(Row(q.name, table[key][1], text, html.escape(q.unit)))
+        rows.append(Row(q.name, table[key][1], q.number(value, rich=True), html.escape(q.unit)))
     return tuple(rows)
 
 

@@ -22,13 +22,13 @@ from PySide6.QtCore import Qt, qInstallMessageHandler
 from PySide6.QtGui import QFont, QGuiApplication
 from PySide6.QtWidgets import QApplication
 
-from analysis.study import display_kind
-from app.views.base import PlotView, Series, clean_xy
+from analysis.study import display_kind, scenario_title
+from app.views.base import PlotView, Series, clean_xy, rich_label
 from app.views.design_chart import DesignChart
 from app.views.range_plot import RangePlot
 from app.views.stability_map import StabilityMapView
 from app.views.stability_plot import StabilityPlot
-from app.report.content import ReportContent, num
+from app.report.content import ReportContent, num, symbol_html
 from app.report.identify_section import FIGURE_KEYS as IDENTIFY_FIGURES, identify_figure
 from app.report.zwidth_section import FIGURE_KEYS as ZWIDTH_FIGURES, zwidth_figure
 
@@ -132,7 +132,7 @@ def _prepare(view: PlotView, size: tuple[int, int] = FIG_SIZE) -> PlotView:
 
 
 def _notes(view: PlotView) -> str:
-    text = view.warning.text().replace("⚠ ", "")
+    text = rich_label(html.escape(view.warning_text.replace("⚠ ", ""), quote=False))
     return f" Note: {text}." if text else ""
 
 
@@ -141,8 +141,22 @@ def _bound(content: ReportContent, key: str) -> Figure:
     v = StabilityPlot()
     v.update_result(stab)
     cap = (f"Coupling term against the stability bound (eq. {display_kind(stab).bound_equation}) over the band. "
-           f"Shaded: negative margin. Worst margin {num(stab.worst_margin)} at {num(stab.worst_frequency)} rad/s.")
+           f"Shaded: negative margin. Worst margin {num(stab.worst_margin, rich=True)} at "
+           f"{num(stab.worst_frequency, rich=True)} rad/s.")
     return Figure(key, "Stability bound", cap, v)
+
+
+def _reserve(content: ReportContent, key: str) -> Figure:
+    """The app's ratio view: bound / coupling term, stable below 1; it shows the reserve where
+    the bound binds, which the value plot squeezes against zero."""
+    stab = content.results["stability"]
+    v = StabilityPlot()
+    v.update_result(stab, mode="ratio")
+    eq = display_kind(stab).bound_equation
+    cap = (f"The bound of eq. {eq} divided by the coupling term: unconditionally stable where the curve stays "
+           f"below 1. The reserve is 1 minus the highest point: {num(100 * stab.relative_margin, 4, rich=True)} % "
+           f"at {num(stab.binding_frequency, rich=True)} rad/s.")
+    return Figure(key, "Stability reserve", cap, v)
 
 
 def _range(content: ReportContent, key: str) -> Figure:
@@ -150,7 +164,7 @@ def _range(content: ReportContent, key: str) -> Figure:
     v = RangePlot()
     v.update_result(stab)
     cap = (f"Impedance range: |Z<sub>min</sub>| to |Z<sub>max</sub>| (shaded); k<sub>max</sub> = "
-           f"{num(stab.k_max)} N/m, b<sub>min</sub> = {num(stab.b_min)} N&middot;s/m.")
+           f"{num(stab.k_max, rich=True)} N/m, b<sub>min</sub> = {num(stab.b_min, rich=True)} N&middot;s/m.")
     return Figure(key, "Impedance range (Z-width)", cap, v)
 
 
@@ -175,7 +189,7 @@ def _tradeoff(content: ReportContent, key: str) -> Figure | None:
         if math.isfinite(best.bc):
             v.add("optimum", [best.bc], [best.index], "#c92a2a", symbol="o")
         cap = (f"Transparency index J against the controller damping B<sub>c</sub>; optimum B<sub>c</sub> = "
-               f"{num(best.bc)} N&middot;s/m, J = {num(best.index)}.")
+               f"{num(best.bc, rich=True)} N&middot;s/m, J = {num(best.index, rich=True)}.")
         return Figure(key, "Transparency index", cap, v)
     v = CurvesPlot("Robust stability", ("B_c", "N·s/m"), ("‖L‖∞", "–"))
     v.add("‖L‖∞ (eq. 16)", tc.bc, tc.peak, "#d9480f")
@@ -183,7 +197,7 @@ def _tradeoff(content: ReportContent, key: str) -> Figure | None:
     if math.isfinite(best.bc):
         v.add("optimum", [best.bc], [best.peak], "#c92a2a", symbol="o")
     cap = (f"Robustness peak &#8214;L&#8214;<sub>&infin;</sub> against B<sub>c</sub> "
-           f"(&alpha; = {num(tc.alpha)}, &beta; = {num(tc.beta)}); stable for every weighted "
+           f"(&alpha; = {num(tc.alpha, rich=True)}, &beta; = {num(tc.beta, rich=True)}); stable for every weighted "
            "uncertainty below the line.")
     return Figure(key, "Robust stability", cap, v)
 
@@ -195,8 +209,8 @@ def _step(content: ReportContent, key: str) -> Figure | None:
     v = CurvesPlot("Step response", ("t", "s"), ("x", "mm"))
     v.add("handle position", sr.t, sr.position * 1e3, "#1f5fbf")
     v.add("ideal virtual wall", sr.t, sr.wall_position * 1e3, "#868e96", style=Qt.PenStyle.DashLine)
-    cap = (f"Handle position for a {num(sr.human_force[0])} N force step on the exact sampled loop, "
-           f"B<sub>c</sub> = {num(sr.bc)} N&middot;s/m, against the ideal wall.")
+    cap = (f"Handle position for a {num(sr.human_force[0], rich=True)} N force step on the exact sampled loop, "
+           f"B<sub>c</sub> = {num(sr.bc, rich=True)} N&middot;s/m, against the ideal wall.")
     return Figure(key, "Virtual wall step response", cap, v)
 
 
@@ -209,8 +223,8 @@ def _map(content: ReportContent, key: str) -> Figure | None:
     v.update_point(*content.results["map_point"], None)
     term = ("hands-off, the paper's penalty wall" if display_kind(content.profile).is_impedance
             else "rigid grasp, free motion")
-    cap = (f"Spectral radius &rho; of the exact sampled closed loop ({term}) over {html.escape(smap.x_name)} "
-           f"&times; {html.escape(smap.y_name)}, as in the app's sampled-data tab; "
+    cap = (f"Spectral radius &rho; of the exact sampled closed loop ({term}) over {symbol_html(smap.x_name)} "
+           f"&times; {symbol_html(smap.y_name)}, as in the app's sampled-data tab; "
            f"{len(smap.x)}&times;{len(smap.y)} grid, the black line is &rho; = 1.")
     return Figure(key, "Sampled-data stability map", cap, v)
 
@@ -220,7 +234,7 @@ def _scenario(content: ReportContent, key: str) -> Figure | None:
     if out is None:
         return None
     p = content.profile
-    name = p.simulation.scenario.name if p.simulation else ""
+    name = scenario_title(p.simulation.scenario.name) if p.simulation else ""
     if key == "scenario_position":
         v = CurvesPlot("Scenario: position", ("t", "s"), ("x", "mm"))
         v.add("handle", out.t, out.positions[:, 0] * 1e3, "#1f5fbf")
@@ -236,13 +250,13 @@ def _scenario(content: ReportContent, key: str) -> Figure | None:
     return Figure(key, "Scenario time response: forces", cap, v)
 
 
-_BUILDERS = {"bound": _bound, "range": _range, "chart": _chart, "tradeoff_j": _tradeoff, "tradeoff_l": _tradeoff,
+_BUILDERS = {"bound": _bound, "reserve": _reserve, "range": _range, "chart": _chart, "tradeoff_j": _tradeoff, "tradeoff_l": _tradeoff,
              "step": _step, "map": _map, "scenario_position": _scenario, "scenario_force": _scenario,
              **{k: identify_figure for k in IDENTIFY_FIGURES}, **{k: zwidth_figure for k in ZWIDTH_FIGURES}}
 
 
 def make_view(content: ReportContent, key: str) -> Figure | None:
-    """One figure by key: ``bound``, ``range``, ``chart``, ``tradeoff_j``, ``tradeoff_l``, ``step``,
+    """One figure by key: ``bound``, ``reserve``, ``range``, ``chart``, ``tradeoff_j``, ``tradeoff_l``, ``step``,
     ``map``, ``scenario_position``, ``scenario_force``; ``None`` if the profile has no such data."""
     ensure_app()
     if key not in _BUILDERS:
@@ -255,7 +269,7 @@ def make_view(content: ReportContent, key: str) -> Figure | None:
     return fig
 
 
-FIGURE_KEYS = ("bound", "range", "chart", "tradeoff_j", "tradeoff_l", "step", "map", "scenario_position",
+FIGURE_KEYS = ("bound", "reserve", "range", "chart", "tradeoff_j", "tradeoff_l", "step", "map", "scenario_position",
                "scenario_force", *IDENTIFY_FIGURES, *ZWIDTH_FIGURES)
 
 

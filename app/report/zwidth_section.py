@@ -83,6 +83,11 @@ def zwidth_sections(profile: Profile, res: dict, numbers: dict) -> list[Any]:
            f"({format_number(b)} N&middot;s/m, {format_number(k)} N/m) is "
            f"{'inside' if region.stable(b, k) else 'outside'} the region.")
     after: list[str] = []
+    if region.force_noise is not None:
+        after.append(f"Noise criterion: encoder resolution {format_number(sec.encoder_resolution)} m, force-noise "
+                     f"tolerance {format_number(region.force_noise)} N rms; walls with B above "
+                     f"{format_number(region.b_noise)} N&middot;s/m (B&middot;&sigma;<sub>v</sub> of the quantization "
+                     f"noise over the tolerance) are counted as not renderable.")
     if study.score is not None and study.trials is not None:
         s = study.score
         numbers["zwidth.trials_wrong"] = (float(s.wrong_count), str(s.wrong_count))

@@ -28,10 +28,16 @@ from app.views.base import PlotView
 from app.views.bode_view import BodeView, OrderTable, ParameterTable, unit_of
 from app.widgets.node_progress import NodeProgress
 from analysis.study.citations import ADAMS
+from analysis.study.quantities import format_number
 from app.widgets.citation_note import CitationNote
 
 __all__ = ["IdentifyTab", "TAB"]
 
+
+
+def _rich(value: float) -> str:
+    """A number as the tab's rich text prints it (the study's one formatter)."""
+    return format_number(value, rich=True)
 
 class IdentifyTab(AnalysisTab):
     title = "Identify"
@@ -60,6 +66,8 @@ class IdentifyTab(AnalysisTab):
         self.robust.setObjectName("robustVerdict")
         self.robust.setWordWrap(True)
         self.robust.setTextFormat(Qt.TextFormat.RichText)
+        # its cell does not pass height-for-width on: room for three wrapped lines at any width
+        self.robust.setMinimumHeight(3 * self.robust.fontMetrics().lineSpacing() + 4)
         self.result: IdentifyResult | None = None
         self._run = 0
         self._layout()
@@ -141,8 +149,9 @@ class IdentifyTab(AnalysisTab):
                               unit_of(res.measurements[0].quantity))
         self.parameters.show_fit(fit)
         self.orders.show_orders(res.orders)
-        notes = [f"Residual {fit.residual:.3g} (RMS of the weighted log-response), AIC {fit.aic:.6g}, "
-                 f"BIC {fit.bic:.6g}" + ("" if fit.converged else " — did NOT converge")]
+        notes = [f"Residual {format_number(fit.residual, 3)} (RMS of the weighted log-response), "
+                 f"AIC {format_number(fit.aic)}, BIC {format_number(fit.bic)}"
+                 + ("" if fit.converged else " — did NOT converge")]
         notes += [f"{k} is not identifiable: {fit.suggestions.get(k, '')}" for k in fit.non_identifiable]
         notes += list(fit.warnings)
         self.summary.setText("\n".join(notes))
@@ -167,13 +176,13 @@ class IdentifyTab(AnalysisTab):
         color = "#237032" if designs.holds else "#c92a2a"
         extra = ""
         if designs.stiffness is not None and designs.stiffness.kc is not None:
-            b = ", ".join(f"{k} = {v:.6g}" for k, v in designs.stiffness.binding.items())
+            b = ", ".join(f"{k} = {_rich(v)}" for k, v in designs.stiffness.binding.items())
             nominal = designs.stiffness.nominal_kc
             extra = (f"<br>Robust largest k<sub>c</sub> at b<sub>c</sub> = {designs.stiffness.bc:g} N·s/m: "
-                     f"{designs.stiffness.kc:.6g} N/m (nominal {nominal:.6g} N/m); binding device: {b}")
+                     f"{_rich(designs.stiffness.kc)} N/m (nominal {_rich(nominal)} N/m); binding device: {b}")
         elif designs.damping is not None and designs.damping.low is not None:
             extra = (f"<br>Robust b<sub>c</sub> interval for m<sub>c</sub> = {designs.damping.mc:g} kg: "
-                     f"[{designs.damping.low:.6g}, {designs.damping.high:.6g}] N·s/m")
+                     f"[{_rich(designs.damping.low)}, {_rich(designs.damping.high)}] N·s/m")
         self.robust.setText(f"<b style='color:{color}'>{designs.verdict()}</b>{extra}")
 
     def refresh(self) -> None:

@@ -4,24 +4,30 @@ Controls (:class:`~app.panels.observer_panel.ObserverPanel`) for the profile's o
 α/β/δ perturbation of the real plant, the two-axis five-bar preset).  Plots: the effective plant
 through the observer against the nominal and real plants, disturbance to velocity with and
 without the observer, the cross-axis coupling |v_y/F_x| of the two-axis device with and without
-the observers, and the y answer to a commanded force step on x.  The nodes
-(:mod:`app.core.nodes_observer`) are synchronous (< 50 ms together).
+the observers, and the y answer to a commanded force step on x.  The single-axis node
+(:mod:`app.core.nodes_observer`) is synchronous and follows every step of a slider drag; the two
+two-axis nodes run on the worker and are held during a drag, catching up when it pauses or ends
+(their titles say so).  The axes keep their range during the drag and a plot is redrawn only when
+its result changed.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, Slot
 from PySide6.QtWidgets import QGridLayout, QLabel, QVBoxLayout, QWidget
 
 from analysis.study import observer_device_label
+from analysis.transparency.observer import ObserverResponse
+from analysis.transparency.settings import ObserverSettings
 
 from app.core import nodes_observer
 from app.core.compute_graph import ComputeGraph
-from app.core.nodes_observer import NODES, OBSERVER_W, observer_settings
+from app.core.nodes_observer import HELD_NODES, NODES, OBSERVER_W, observer_settings
 from app.panels.observer_panel import ObserverPanel
 from app.views.base import PlotView, fmt
 from app.views.curves_plot import CurvesPlot
+from app.widgets.task_progress import TASK_TITLES
 from app.tabs.base import AnalysisTab, AppContext
 from analysis.study.citations import EOM
 from app.widgets.citation_note import CitationNote
@@ -37,11 +43,15 @@ class ObserverTab(AnalysisTab):
     @classmethod
     def register_nodes(cls, graph: ComputeGraph) -> None:
         nodes_observer.register(graph)
+        TASK_TITLES.setdefault("observer_coupling", "Two-axis coupling")
+        TASK_TITLES.setdefault("observer_step", "Two-axis step")
 
     def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
         super().__init__(ctx, parent)
         self.panel = ObserverPanel(ctx.model, ctx.editor)
         self.fields = self.panel.fields
+        self._drawn: dict[str, object] = {}  # two-axis plot -> the result it shows (redrawn when it changes)
+        self._range_held = False  # the axes stand still during a slider drag
         self._build_plots()
         grid = QGridLayout()
         grid.setSpacing(6)
@@ -60,6 +70,8 @@ class ObserverTab(AnalysisTab):
         lay.addWidget(self.device_label)
         lay.addLayout(grid, 1)
         lay.addWidget(CitationNote(EOM))  # the full citation of the tab's equation numbers
+        ctx.graph.ready.connect(self._on_ready)
+        ctx.editor.dragChanged.connect(self._on_drag)
 
     def _build_plots(self) -> None:
         w_axis, y_axis = ("ω", "rad/s"), ("|v/u|", "m/(N·s)")
@@ -97,9 +109,33 @@ class ObserverTab(AnalysisTab):
         graph = self.ctx.graph
         st = observer_settings(self.ctx.model.profile)
         self.device_label.setText(observer_device_label(self.ctx.model.profile))
+        self._hold_ranges(graph.interactive)
         r = graph.get("observer_response")
-        c = graph.get("observer_coupling")
-        s = graph.get("observer_step")
+        c = graph.request("observer_coupling")
+        s = graph.request("observer_step")
+        if self._drawn.get("response") is not r:
+            self._draw_response(r, st)
+        if c is not None and self._drawn.get("coupling") is not c:
+            self._drawn["coupling"] = c
+            self.coupling_plot.set_curve("without", c.w, np.abs(c.coupling_without))
+            self.coupling_plot.set_curve("with", c.w, np.abs(c.coupling_with))
+            self.coupling_plot.bump()
+        if s is not None and self._drawn.get("step") is not s:
+            self._drawn["step"] = s
+            self.step_plot.set_curve("without", s.t, 1e3 * s.y_without)
+            self.step_plot.set_curve("with", s.t, 1e3 * s.y_with)
+            self.step_plot.title = f"Force step F<sub>x</sub> = {fmt(s.force)} N on x: y displacement"
+            self.step_plot.bump()
+        for v in (self.plant_plot, self.disturbance_plot, self.coupling_plot):
+            v.set_line("cutoff", st.cutoff)
+        waiting = graph.waiting()
+        for name, view in zip(HELD_NODES, (self.coupling_plot, self.step_plot)):
+            view.set_busy(not graph.is_fresh(name), "updating after the drag…" if name in waiting else "")
+        self.refreshes += 1
+        self.stale = False
+
+    def _draw_response(self, r: ObserverResponse, st: ObserverSettings) -> None:
+        self._drawn["response"] = r
         self.plant_plot.set_curve("plant", r.w, np.abs(r.plant))
         self.plant_plot.set_curve("nominal", r.w, np.abs(r.nominal))
         self.plant_plot.set_curve("effective", r.w, np.abs(r.effective))
@@ -107,18 +143,29 @@ class ObserverTab(AnalysisTab):
                                                  f"δ = {fmt(st.delta)}")
         self.disturbance_plot.set_curve("without", r.w, np.abs(r.disturbance_without))
         self.disturbance_plot.set_curve("with", r.w, np.abs(r.disturbance_with))
-        self.coupling_plot.set_curve("without", c.w, np.abs(c.coupling_without))
-        self.coupling_plot.set_curve("with", c.w, np.abs(c.coupling_with))
-        for v in (self.plant_plot, self.disturbance_plot, self.coupling_plot):
-            v.set_line("cutoff", st.cutoff)
-        self.step_plot.set_curve("without", s.t, 1e3 * s.y_without)
-        self.step_plot.set_curve("with", s.t, 1e3 * s.y_with)
-        self.step_plot.header.setText(f"<b>Force step F<sub>x</sub> = {fmt(s.force)} N on x: "
-                                      "y displacement</b>")
-        for v in self.plot_views():
-            v.bump()
-        self.refreshes += 1
-        self.stale = False
+        self.plant_plot.bump()
+        self.disturbance_plot.bump()
+
+    def apply_theme(self, dark: bool) -> None:
+        self._drawn.clear()  # every plot is drawn again in the theme's colours
+        super().apply_theme(dark)
+
+    def _hold_ranges(self, hold: bool) -> None:
+        """Keep the axes still while a slider is dragged (auto-range again after it)."""
+        if hold != self._range_held:
+            self._range_held = hold
+            for view in self.plot_views():
+                view.hold_range(hold)
+
+    @Slot(bool)
+    def _on_drag(self, on: bool) -> None:
+        if not on:  # the drag ended: the axes follow the data again
+            self._hold_ranges(False)
+
+    @Slot(str)
+    def _on_ready(self, name: str) -> None:
+        if name in HELD_NODES and self.isVisible():
+            self.refresh()
 
 
 TAB = ObserverTab

@@ -19,7 +19,7 @@ from collections.abc import Hashable
 from typing import Any
 
 from PySide6.QtCore import Qt, Slot
-from PySide6.QtWidgets import QLabel, QScrollArea, QSplitter, QToolButton, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QScrollArea, QSplitter, QToolButton, QVBoxLayout, QWidget
 
 from analysis.profiles.io import Profile
 from analysis.sampled import StabilityMap
@@ -50,6 +50,7 @@ from app.views.sampled_summary import design_on_map, exact_summary, map_subtitle
 from app.views.stability_map import StabilityMapView
 from app.views.time_response import TimeResponse
 from app.widgets.node_progress import NodeProgress
+from app.widgets.rich_text_pane import RichTextPane
 from app.widgets.task_progress import TASK_TITLES
 from app.tabs.async_jobs import AsyncJobs
 from app.tabs.base import AnalysisTab, AppContext
@@ -93,9 +94,7 @@ class SampledTab(AsyncJobs, AnalysisTab):
         self.map_view = StabilityMapView()
         self.exact_view = ExactLimitChart()
         self.time_view = TimeResponse()
-        self.summary = QLabel("")
-        self.summary.setWordWrap(True)
-        self.summary.setTextFormat(Qt.TextFormat.RichText)
+        self.summary = RichTextPane()  # rewritten on every step of a drag: laid out in place
         self.progress = {name: NodeProgress(ctx.graph, name, TITLES[name]) for name in ASYNC_NODES}
         for w in self.progress.values():
             w.rerun.connect(self.run_again)
@@ -202,7 +201,8 @@ class SampledTab(AsyncJobs, AnalysisTab):
 
     def refresh(self) -> None:
         g, p = self.ctx.graph, self.ctx.model.profile
-        self.map_panel.show_display(p.display)
+        if self.map_panel.display != p.display:  # (rebuilding its fields on every drag step costs)
+            self.map_panel.show_display(p.display)
         settings = self.map_panel.settings(p.display)
         g.set_params(MAP_NODE, **settings)
         g.set_params(POINT_NODE, x=settings["x"], y=settings["y"])
@@ -211,9 +211,12 @@ class SampledTab(AsyncJobs, AnalysisTab):
         bound_chart = g.result("design_chart") if g.holding else g.request("design_chart")
         self._draw_map(p, m)
         self._draw_exact(p, chart, bound_chart)
-        bound = g.get("max_stiffness").kc if display_kind(p).is_impedance else None
+        # the two-port bound at the current b_c (its refinement is held back while a drag moves)
+        design = g.get("max_stiffness") if display_kind(p).is_impedance else None
+        bound = design.kc if design is not None and g.is_fresh("max_stiffness") else None
         self.summary.setText(for_theme(exact_summary(p, limit if g.is_fresh(LIMIT_NODE) else None, bound,
-                                                     *delays(p)), self.dark))
+                                                     *delays(p), bound_pending="max_stiffness" in g.waiting()),
+                                       self.dark))
         self._draw_simulation(sim)
         self.refreshes += 1
         self.stale = False

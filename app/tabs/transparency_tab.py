@@ -5,11 +5,17 @@ and for the current controller damping B_c.  Plots: J(B_c) and ‖L‖∞(B_c) (
 current B_c and the robust optimum marked, the admittances |Y_v| and |Y_t| (Fig. 9), and the
 answer to a human-force step (position and actuator force, Figs. 7 and 10).
 
+During a slider drag the markers at the current B_c, the admittances and the summary follow every
+step; the curves over B_c and the step response are held (``live=False`` nodes) and catch up on
+the worker when the drag pauses or ends, their titles saying so.  The axes keep their range during
+the drag, a plot is redrawn only when its result changed, and the summary sits in a scroll area, so
+that a new text does not lay the window out again.
+
 The controls are :class:`~app.panels.wall_panel.WallPanel`.  The current B_c is not a profile
 field (``WallSettings`` has none): the panel holds it, starting at the paper's B_c = 15 N·s/m,
 and the tab passes it to the graph nodes (:mod:`app.core.nodes_wall`) as a node parameter.
-The curves over B_c are an asynchronous node (up to ~0.2 s for the ``zoh`` and ``discrete``
-holds); everything at the current B_c is cheap and synchronous.
+The curves over B_c (up to ~0.2 s for the ``zoh`` and ``discrete`` holds) and the step response
+are asynchronous nodes; the point and the admittances at the current B_c are cheap and synchronous.
 """
 
 from __future__ import annotations
@@ -18,7 +24,7 @@ import math
 
 import numpy as np
 from PySide6.QtCore import Qt, QTimer, Slot
-from PySide6.QtWidgets import QFrame, QGridLayout, QLabel, QSizePolicy, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QGridLayout, QVBoxLayout, QWidget
 
 from analysis.study import wall_device_label
 from analysis.transparency.settings import StepResponse, WallSettings
@@ -46,6 +52,7 @@ from app.widgets.task_progress import TASK_TITLES
 from app.tabs.base import AnalysisTab, AppContext
 from analysis.study.citations import EOM
 from app.widgets.citation_note import CitationNote
+from app.widgets.rich_text_pane import RichTextPane, scrolling_pane
 
 __all__ = ["TransparencyTab", "TAB", "wall_settings", "wall_design", "WallPoint", "WallTradeoff",
            "WallAdmittances", "admittance_grid", "DEFAULT_BC", "NODES", "HOLD_LABELS"]
@@ -60,6 +67,7 @@ class TransparencyTab(AnalysisTab):
     def register_nodes(cls, graph: ComputeGraph) -> None:
         nodes_wall.register(graph)
         TASK_TITLES.setdefault("wall_tradeoff", "Computing J(B_c) and ‖L‖∞(B_c)")
+        TASK_TITLES.setdefault("wall_step", "Step response")
 
     def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
         super().__init__(ctx, parent)
@@ -67,19 +75,16 @@ class TransparencyTab(AnalysisTab):
         self.fields = self.panel.fields
         self.bc_field, self.optimum_button = self.panel.bc_field, self.panel.optimum_button
         self.tradeoff_drawn: WallTradeoff | None = None
+        self._drawn: dict[str, tuple] = {}  # plot -> the result objects it shows (redrawn only when they change)
+        self._range_held = False  # the axes stand still during a slider drag
         self._build_plots()
-        self.summary = QLabel()
+        self.summary = RichTextPane()  # rewritten on every step of a drag: laid out once, in place
         self.summary.setObjectName("wallSummary")
-        self.summary.setTextFormat(Qt.TextFormat.RichText)
-        self.summary.setWordWrap(True)
-        self.summary.setAlignment(Qt.AlignmentFlag.AlignTop | Qt.AlignmentFlag.AlignLeft)
-        self.summary.setFrameShape(QFrame.Shape.StyledPanel)
-        self.summary.setMargin(6)
-        self.summary.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Expanding)
+        self.summary_area = scrolling_pane(self.summary)
         grid = QGridLayout()
         grid.setSpacing(6)
         for i, w in enumerate((self.index_plot, self.peak_plot, self.admittance_plot,
-                               self.position_plot, self.force_plot, self.summary)):
+                               self.position_plot, self.force_plot, self.summary_area)):
             grid.addWidget(w, i // 3, i % 3)
             if isinstance(w, PlotView):
                 w.legend_outside()  # six small plots: a legend inside would cover their curves
@@ -93,6 +98,7 @@ class TransparencyTab(AnalysisTab):
         self.panel.bcChanged.connect(self._on_bc)
         self.panel.optimumRequested.connect(self.use_optimum)
         ctx.graph.ready.connect(self._on_ready)
+        ctx.editor.dragChanged.connect(self._on_drag)
 
     # -- the current B_c (panel state, a node parameter) -------------------------------------------------
     @property
@@ -172,25 +178,69 @@ class TransparencyTab(AnalysisTab):
             graph.set_params(name, bc=self.bc)
         st = wall_settings(self.ctx.model.profile)
         point: WallPoint = graph.get("wall_point")
-        step: StepResponse = graph.get("wall_step")
         adm: WallAdmittances = graph.get("wall_admittance")
         trade: WallTradeoff | None = graph.request("wall_tradeoff")
+        step: StepResponse | None = graph.request("wall_step")
         fresh = graph.is_fresh("wall_tradeoff")
-        self._draw_tradeoff(trade, fresh)
+        self._hold_ranges(graph.interactive)
+        if self._changed("tradeoff", trade):
+            self._draw_tradeoff(trade)
+        if trade is not None:  # usable when fresh (not during a drag that changed the wall)
+            o = trade.optimum
+            self.panel.show_optimum(o.bc if o.feasible else None, fresh)
         self._draw_point(point, trade if fresh else None)
-        self._draw_admittance(adm)
-        self._draw_step(step, st)
-        self.summary.setText(for_theme(wall_summary(st, point, trade if fresh else None,
-                                                    wall_device_label(self.ctx.model.profile)), self.dark))
+        if self._changed("admittance", adm):
+            self._draw_admittance(adm)
+        if step is not None and self._changed("step", step, st.step_force):
+            self._draw_step(step, st)
+        for name, views in (("wall_tradeoff", (self.index_plot, self.peak_plot)),
+                            ("wall_step", (self.position_plot, self.force_plot))):
+            busy, text = not graph.is_fresh(name), self._busy_text(name)
+            for view in views:
+                view.set_busy(busy, text)
+        summary = for_theme(wall_summary(st, point, trade if fresh else None,
+                                         wall_device_label(self.ctx.model.profile)), self.dark)
+        if summary != self.summary.text():
+            self.summary.setText(summary)
         self.refreshes += 1
         self.stale = False
 
+    def _busy_text(self, name: str) -> str:
+        """While a slider drag holds ``name`` back, that it catches up after the drag."""
+        return "updating after the drag…" if name in self.ctx.graph.waiting() else ""
+
+    def _changed(self, view: str, *shown: object) -> bool:
+        """Whether ``view`` must be redrawn: it shows other result objects than ``shown`` (a held
+        result is the same object during a drag: its plots are not redrawn on every step)."""
+        old = self._drawn.get(view)
+        if old is not None and len(old) == len(shown) and all(
+                a is b or (isinstance(a, (str, bool, float)) and a == b) for a, b in zip(old, shown)):
+            return False
+        self._drawn[view] = shown
+        return True
+
+    def apply_theme(self, dark: bool) -> None:
+        self._drawn.clear()  # every plot is drawn again in the theme's colours
+        super().apply_theme(dark)
+
+    def _hold_ranges(self, hold: bool) -> None:
+        """Keep the axes still while a slider is dragged (auto-range again after it)."""
+        if hold != self._range_held:
+            self._range_held = hold
+            for view in self.plot_views():
+                view.hold_range(hold)
+
+    @Slot(bool)
+    def _on_drag(self, on: bool) -> None:
+        if not on:  # the drag ended: the axes follow the data again
+            self._hold_ranges(False)
+
     @Slot(str)
     def _on_ready(self, name: str) -> None:
-        if name == "wall_tradeoff" and self.isVisible():
+        if name in ("wall_tradeoff", "wall_step") and self.isVisible():
             self.refresh()
 
-    def _draw_tradeoff(self, trade: WallTradeoff | None, fresh: bool) -> None:
+    def _draw_tradeoff(self, trade: WallTradeoff | None) -> None:
         if trade is None:
             return
         c, o = trade.curves, trade.optimum
@@ -211,14 +261,12 @@ class TransparencyTab(AnalysisTab):
         else:
             self.index_plot.set_marker("optimum", None, None)
             self.peak_plot.set_marker("optimum", None, None)
-        notes = [] if fresh else ["updating the curves…"]
+        notes = []
         if hidden:
             notes.append(f"shaded: J = ∞ (closed loop unstable, or J unbounded) at {hidden} of {c.bc.size} "
                          "values of B_c")
         self.index_plot.set_warning(notes)
-        self.peak_plot.set_warning([] if fresh else ["updating the curves…"])
         self.tradeoff_drawn = trade
-        self.panel.show_optimum(o.bc if o.feasible else None, fresh)
         self.index_plot.bump()
         self.peak_plot.bump()
 

@@ -19,7 +19,7 @@ from app.views.curves_plot import CurvesPlot
 
 __all__ = ["BodeView", "ParameterTable", "OrderTable", "PARAMETER_COLUMNS", "ORDER_COLUMNS", "unit_of"]
 
-PARAMETER_COLUMNS = ("parameter", "value", "std. error", "95 % low", "95 % high", "note")
+PARAMETER_COLUMNS = ("parameter", "value", "std. error", "95 % low", "95 % high", "interval", "note")
 ORDER_COLUMNS = ("n", "AIC", "BIC", "residual", "")
 
 
@@ -99,7 +99,8 @@ class _Table(QTableWidget):
 
 
 class ParameterTable(_Table):
-    """One row per parameter: value, standard error, 95 % interval, fixed / not identifiable."""
+    """One row per parameter: value, standard error, 95 % interval and how it was found (wald,
+    profile, unbounded), fixed / not identifiable."""
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(PARAMETER_COLUMNS, parent)
@@ -111,9 +112,9 @@ class ParameterTable(_Table):
             t = row["text"]
             note = "fixed" if row["fixed"] else ("not identifiable" if not row["identifiable"] else "")
             tip = fit.suggestions.get(row["key"], "") if fit is not None else ""
-            cells = (row["key"], t["value"], t["std_error"], t["low"], t["high"], note)
+            cells = (row["key"], t["value"], t["std_error"], t["low"], t["high"], row["method"], note)
             for c, text in enumerate(cells):
-                self.setItem(r, c, _item(text, tip if c == 5 else ""))
+                self.setItem(r, c, _item(text, tip if c == 6 else ""))
 
 
 class OrderTable(_Table):

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 import pyqtgraph as pg
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QSizePolicy, QWidget
+from PySide6.QtWidgets import QGraphicsItem, QGraphicsTextItem, QSizePolicy, QWidget
 
 from app.views.base import PlotView, Series, clean_xy
 
@@ -52,6 +52,7 @@ class CurvesPlot(PlotView):
         self.regions: dict[str, list[pg.LinearRegionItem]] = {}
         self.region_spans: dict[str, list[tuple[float, float]]] = {}
         self._data: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+        self._raw: dict[str, tuple[np.ndarray, np.ndarray, bool]] = {}  # the last inputs of set_curve
         self._export_names: dict[str, str] = {}
         self.hidden_points: dict[str, int] = {}
 
@@ -95,12 +96,36 @@ class CurvesPlot(PlotView):
         self.regions[key] = []
         self.region_spans[key] = []
 
+    def set_log(self, x: bool, y: bool) -> None:
+        if (x, y) != self.is_log():
+            self._raw = {}  # the same data is drawn otherwise on other axes
+        super().set_log(x, y)
+
+    def showEvent(self, event: object) -> None:  # noqa: N802 - Qt API
+        super().showEvent(event)
+        self.cache_texts()
+
+    def cache_texts(self) -> None:
+        """Keep the texts (legend, axis titles, line labels) and legend samples as pixmaps: a
+        repaint for a moved curve or marker then copies them instead of laying the text out again
+        (exports switch the caches off, :meth:`~app.views.base.PlotView.render_into`)."""
+        cache = QGraphicsItem.CacheMode.DeviceCoordinateCache
+        for item in self.plot_widget.scene().items():
+            if isinstance(item, (QGraphicsTextItem, pg.ItemSample)) and item.cacheMode() != cache:
+                item.setCacheMode(cache)
+
     # -- updating --------------------------------------------------------------------------------
     def set_curve(self, key: str, x: ArrayLike, y: ArrayLike, gaps: bool = False) -> int:
         """Draw ``y`` against ``x`` (values that cannot be drawn are dropped); returns how many.
 
         With ``gaps`` the line breaks where values are dropped instead of joining across them.
         """
+        raw = (np.array(x, float), np.array(y, float), gaps)
+        old = self._raw.get(key)
+        if old is not None and old[2] == gaps and all(
+                a.shape == b.shape and np.array_equal(a, b, equal_nan=True) for a, b in zip(old[:2], raw[:2])):
+            return self.hidden_points[key]  # unchanged (e.g. the parts a slider does not move): no redraw
+        self._raw[key] = raw
         lx, ly = self.is_log()
         xc, yc, hidden = clean_xy(x, y, lx, ly)
         if gaps and hidden:
@@ -151,8 +176,16 @@ class CurvesPlot(PlotView):
 
     def set_legend_text(self, key: str, text: str) -> None:
         label = self.legend.getLabel(self.items[key])
-        if label is not None:
-            label.setText(text, color=self.palette_colors()["fg"])
+        fg = self.palette_colors()["fg"]
+        if label is not None and (label.text != text or label.opts.get("color") != fg):
+            label.setText(text, color=fg)  # (an unchanged text is not laid out again: drags)
+
+    def set_busy(self, busy: bool, text: str = "") -> None:
+        """Say in the title that the plot is being computed (``text``: e.g. that it catches up
+        after a slider drag, :meth:`~app.core.compute_graph.ComputeGraph.waiting`)."""
+        head = f"<b>{self.title}</b>" + (f"  <i>({text or 'updating…'})</i>" if busy else "")
+        if head != self.header.text():
+            self.header.setText(head)
 
     def data(self, key: str) -> tuple[np.ndarray, np.ndarray]:
         """The data of a curve or marker as drawn."""

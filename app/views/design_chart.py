@@ -9,19 +9,18 @@ from __future__ import annotations
 
 import numpy as np
 import pyqtgraph as pg
-from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QWidget
 
 from analysis import MassChart, StiffnessChart
 from analysis.study import IMPEDANCE, ChartResult, DisplayKind, display_kind
-from app.views.base import PlotView, Series, clean_xy, mark_design_point, plain
+from app.views.pickable import PickablePlotView
+from app.views.base import Series, clean_xy, mark_design_point, plain
 from app.views.placement import CenterMessage, LegendPlacer
 
 __all__ = ["DesignChart"]
 
 
-class DesignChart(PlotView):
-    pointPicked = Signal(float, float)  # x, y in data units
+class DesignChart(PickablePlotView):
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__("Design chart", parent)
@@ -52,7 +51,6 @@ class DesignChart(PlotView):
         self._notes: list[str] = []
         self._point_note = ""
         self.set_axis_labels("b_c", "N·s/m", "k_c", "N/m")
-        self.plot_widget.scene().sigMouseClicked.connect(self._on_click)
         self.plot_widget.setToolTip("Click to set the coupling gains")
 
     def set_busy(self, busy: bool) -> None:
@@ -176,18 +174,6 @@ class DesignChart(PlotView):
 
     def _refresh_warning(self) -> None:
         self.set_warning([*self._notes, self._point_note])
-
-    @Slot(object)
-    def _on_click(self, event: object) -> None:
-        if event.button() != Qt.MouseButton.LeftButton or event.double():
-            return
-        vb = self.plot.getViewBox()
-        pos = event.scenePos()
-        if not vb.sceneBoundingRect().contains(pos):
-            return
-        x, y = self.data_point(vb.mapSceneToView(pos))
-        event.accept()
-        self.pointPicked.emit(float(x), float(y))
 
     def restyle(self, pal: dict) -> None:
         self.upper.setPen(pg.mkPen(pal["a"], width=2))

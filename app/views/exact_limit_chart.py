@@ -17,7 +17,8 @@ from PySide6.QtWidgets import QWidget
 from analysis.sampled import CriticalChart, CriticalMassChart
 
 from analysis.study import IMPEDANCE, ChartResult, DisplayKind, display_kind
-from app.views.base import PlotView, Series, clean_xy, mark_design_point, plain
+from app.views.base import PlotView, Series, clean_xy, plain
+from app.views.marker import design_marker, marker_xy, move_marker, set_marker_brush
 from app.views.placement import CenterMessage
 
 __all__ = ["ExactLimitChart"]
@@ -35,9 +36,8 @@ class ExactLimitChart(PlotView):
         self.exact.setSymbolSize(5)
         self.exact.setSymbolBrush("#d9480f")
         self.exact.setSymbolPen(None)
-        self.point = pg.PlotDataItem([], [], pen=None, symbol="o", symbolSize=12, symbolBrush="#c92a2a",
-                                     symbolPen=pg.mkPen("w", width=1.5), name="current gains")
-        self.point.setZValue(20)
+        # moved on every step of a slider drag: a bare scatter item (app.views.marker)
+        self.point = design_marker("current gains", "o", 12, "#c92a2a", pg.mkPen("w", width=1.5))
         self.plot.addItem(self.point)
         # A small chart (360 x 170 px at 1280 x 800) has no free corner for three entries: the legend
         # sits in a row below the x axis, where it covers neither curve nor the current gains.
@@ -141,9 +141,11 @@ class ExactLimitChart(PlotView):
         self.message.set_text(self.empty_message, self.palette_colors()["fg"])
 
     def update_point(self, x: float, y: float, stable: bool | None) -> None:
-        self._point_note = mark_design_point(self.point, x, y, stable, self.palette_colors())
-        drawn = x > 0 and y > 0 and np.isfinite(x) and np.isfinite(y)
-        self._point_xy = (float(x), float(y)) if drawn else None
+        drawn = move_marker(self.point, x, y)
+        pal = self.palette_colors()
+        set_marker_brush(self.point, pal["c"] if stable else pal["mark"])
+        self._point_note = "" if drawn else "current gains not drawn (zero on a log axis)"
+        self._point_xy = marker_xy(self.point)
         self._refresh_warning()
         self.bump()
 
@@ -155,7 +157,7 @@ class ExactLimitChart(PlotView):
             c.setPen(pg.mkPen(pal["a"], width=2, style=Qt.PenStyle.DashLine))
         self.exact.setPen(pg.mkPen(pal["b"], width=2.5))
         self.exact.setSymbolBrush(pal["b"])
-        self.point.setSymbolPen(pg.mkPen(pal["bg"], width=1.5))
+        self.point.setPen(pg.mkPen(pal["bg"], width=1.5))
         self.message.set_text(self.empty_message, pal["fg"])
 
     def export_series(self) -> list[Series]:

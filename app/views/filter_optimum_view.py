@@ -109,11 +109,6 @@ class FilterOptimumView(PlotView):
         self.best.setSymbolBrush(pal["b"])
         self.best.setSymbolPen(pg.mkPen(pal["bg"], width=1))
 
-    def place_legend(self) -> None:
-        """The legend is a row below the plot (``legend_outside``): never anchored over the data."""
-        if self.legend_row is not None:
-            self.legend_row.fit()
-
     def export_series(self) -> list[Series]:
         return list(self._series)
 

@@ -22,7 +22,7 @@ from analysis.study import display_kind
 
 from app.views.base import PlotView, Series, clean_xy, plain, rich_label
 
-__all__ = ["RangePlot", "interest_mask", "TAIL_FRACTION", "TAIL_JUMP", "BMIN_DECADES"]
+__all__ = ["RangePlot", "interest_mask", "set_data", "set_text", "TAIL_FRACTION", "TAIL_JUMP", "BMIN_DECADES"]
 
 #: the last part of the band (fraction of its top frequency) that may leave the default view ...
 TAIL_FRACTION = 0.98
@@ -45,6 +45,19 @@ def interest_mask(w: np.ndarray, *curves: np.ndarray) -> np.ndarray:
     if not (np.isfinite(head) and np.isfinite(top)) or top <= TAIL_JUMP * head:
         return np.ones(w.size, bool)
     return ~tail
+
+
+def set_data(item: pg.PlotDataItem, x: np.ndarray, y: np.ndarray) -> None:
+    """``item.setData(x, y)`` unless it shows these points already (the same on most drag steps)."""
+    ox, oy = item.getOriginalDataset()
+    if ox is None or oy is None or not (np.array_equal(ox, x) and np.array_equal(oy, y)):
+        item.setData(x, y)
+
+
+def set_text(item: pg.TextItem, text: str) -> None:
+    """``item.setText(text)`` unless it shows ``text`` already (a new text is laid out and repainted)."""
+    if item.textItem.toPlainText() != text:
+        item.setText(text)
 
 
 class RangePlot(PlotView):
@@ -126,13 +139,13 @@ class RangePlot(PlotView):
         if np.isfinite(bm) and bm > 0:
             if not below and np.isfinite(lo):
                 self.default_y = (min(lo, bm), hi)
-            self.bmin_curve.setData([w[0], w[-1]], [bm, bm])
+            set_data(self.bmin_curve, np.array([w[0], w[-1]]), np.array([bm, bm]))
             self._series.append(Series("b_min", "omega (rad/s)", "b_min (N s/m)",
                                        np.array([w[0], w[-1]]), np.array([bm, bm])))
         else:
             self.bmin_curve.setData([], [])
         self.set_legend_text(self.bmin_curve, f"b<sub>min</sub> ({plain(bm)} N·s/m)" + (", below" if below else ""))
-        self.below_scale.setText(f"↓ b_min = {plain(bm)} N·s/m lies below the axis" if below else "")
+        set_text(self.below_scale, f"↓ b_min = {plain(bm)} N·s/m lies below the axis" if below else "")
         self._off_scale_text(w, res, keep)
         self._place_notes()
         self.set_warning(notes)
@@ -149,12 +162,12 @@ class RangePlot(PlotView):
 
     def _off_scale_text(self, w: np.ndarray, res: StabilityResult, keep: np.ndarray) -> None:
         if np.all(keep):
-            self.off_scale.setText("")
+            set_text(self.off_scale, "")
             return
         z = np.abs(np.concatenate([res.zmin[~keep], res.zmax[~keep]]))
         z = z[np.isfinite(z)]
         top = plain(float(z.max()), 3) if z.size else "∞"
-        self.off_scale.setText(f"↑ off-scale: |Z| rises to {top} N·s/m above ω = {plain(float(w[keep][-1]))} rad/s")
+        set_text(self.off_scale, f"↑ off-scale: |Z| rises to {top} N·s/m above ω = {plain(float(w[keep][-1]))} rad/s")
 
     def _update_fill(self, x1: np.ndarray, y1: np.ndarray, x2: np.ndarray, y2: np.ndarray) -> None:
         if x1.size < 2 or x2.size < 2:

@@ -17,7 +17,7 @@ from analysis.study import display_kind, map_point
 
 from app.views.base import fmt, rich_label
 
-__all__ = ["map_subtitle", "design_on_map", "exact_summary", "scenario_note", "LINEAR_LABEL"]
+__all__ = ["map_subtitle", "design_on_map", "exact_summary", "scenario_note", "LINEAR_LABEL", "CATCHING_UP"]
 
 _GOOD, _BAD = "#2b8a3e", "#c92a2a"
 
@@ -49,8 +49,13 @@ def design_on_map(p: Profile, m: StabilityMap) -> tuple[float, float | None]:
     return map_point(p, m.x_name, m.y_name)
 
 
-def _impedance_summary(p: Profile, limit: float | None, bound: float | None, delay: str) -> str:
-    bound_txt = "none" if bound is None else f"{fmt(bound / 1e3, 4)} kN/m"
+#: Said in place of a number that a moving slider drag holds back (computed when it pauses or ends).
+CATCHING_UP = "<i>updating after the drag…</i>"
+
+
+def _impedance_summary(p: Profile, limit: float | None, bound: float | None, delay: str,
+                       bound_pending: bool = False) -> str:
+    bound_txt = CATCHING_UP if bound_pending else "none" if bound is None else f"{fmt(bound / 1e3, 4)} kN/m"
     if limit is None:
         exact_txt = "computing…"
     elif limit == 0:
@@ -95,14 +100,16 @@ def _admittance_summary(p: Profile, limit: float | None, delay: str) -> str:
 LINEAR_LABEL = "<b>Linear stability</b> (exact sampled loop, no friction, quantization or saturation): "
 
 
-def exact_summary(p: Profile, limit: float | None, bound: float | None, d: int, impl: bool) -> str:
+def exact_summary(p: Profile, limit: float | None, bound: float | None, d: int, impl: bool,
+                  bound_pending: bool = False) -> str:
     """The exact limit at the current b_c against the two-port bound (``bound``: largest k_c, eq. 9),
-    labelled as the linear loop's answer (:data:`LINEAR_LABEL`)."""
+    labelled as the linear loop's answer (:data:`LINEAR_LABEL`).  ``bound_pending``: a slider drag
+    holds the bound back (:data:`CATCHING_UP` is said instead)."""
     delay = f"{d}-sample computation delay" if d else "no computation delay"
     if impl:
         delay += " + implementation delay"
     if display_kind(p).is_impedance:
-        return LINEAR_LABEL + rich_label(_impedance_summary(p, limit, bound, delay))
+        return LINEAR_LABEL + rich_label(_impedance_summary(p, limit, bound, delay, bound_pending))
     return LINEAR_LABEL + rich_label(_admittance_summary(p, limit, delay))
 
 

@@ -21,6 +21,7 @@ from analysis.sampled import StabilityMap
 
 from analysis.study.labels import PARAMETER_LABELS
 from app.views.base import PlotView, Series, plain
+from app.views.marker import design_marker, marker_xy, move_marker, set_marker_brush
 
 __all__ = ["StabilityMapView", "PARAMETER_LABELS", "radius_colormap"]
 
@@ -56,9 +57,8 @@ class StabilityMapView(PlotView):
                                    label="spectral radius ρ", interactive=False,
                                    colorMapMenu=False)
         self.bar.setImageItem(self.image, insert_in=self.plot)
-        self.point = pg.PlotDataItem([], [], pen=None, symbol="star", symbolSize=16, symbolBrush="#ffd43b",
-                                     symbolPen=pg.mkPen("k", width=1.2), name="current design")
-        self.point.setZValue(20)
+        # moved on every step of a slider drag: a bare scatter item (app.views.marker)
+        self.point = design_marker("current design", "star", 16, "#ffd43b", pg.mkPen("k", width=1.2))
         self.plot.addItem(self.point)
         self.xline = pg.InfiniteLine(angle=90, movable=False,
                                      pen=pg.mkPen("#212529", width=1.5, style=Qt.PenStyle.DashLine))
@@ -126,21 +126,26 @@ class StabilityMapView(PlotView):
         """The current design at ``(x, y)``; ``y`` None or <= 0 draws a vertical line at ``x``."""
         self._point_note = ""
         if not (x > 0 and math.isfinite(x)):
-            self.point.setData([], [])
+            move_marker(self.point, math.nan, math.nan)
             self.xline.hide()
             self._point_note = "current design not drawn (zero on a log axis)"
         elif y is None or not (y > 0 and math.isfinite(y)):
-            self.point.setData([], [])
+            move_marker(self.point, math.nan, math.nan)
             self.xline.setPos(math.log10(x))
             self.xline.show()
             self._point_note = "current design: dashed line (its y value is 0, off the log axis)"
         else:
             self.xline.hide()
-            self.point.setData([x], [y])
+            move_marker(self.point, x, y)
         if stable is not None:
-            self.point.setSymbolBrush("#ffd43b" if stable else "#e03131")
+            set_marker_brush(self.point, "#ffd43b" if stable else "#e03131")
         self._refresh_warning()
         self.bump()
+
+    @property
+    def point_xy(self) -> tuple[float, float] | None:
+        """The current design's marker in data units (None when not drawn)."""
+        return marker_xy(self.point)
 
     def value_at(self, x: float, y: float) -> float:
         m = self.map

@@ -89,7 +89,8 @@ class StabilityPlot(PlotView):
         self.limit_line = self.curve("limit 1 (margin 0)", "#c92a2a", width=1.2, style=Qt.PenStyle.DashLine)
         self._regions: list[pg.LinearRegionItem] = []
         self._bad_brush = (220, 40, 40, 45)
-        self._series: list[Series] = []
+        self._shown: tuple[StabilityResult, str, str, str] | None = None  # what is drawn (exports)
+        self._limit_span: tuple[float, float] | None = None
         self.set_log(True, False)
         self.set_axis_labels("ω", "rad/s", "Re(1/Z_c)", "m/(N·s)")
         self.legend_region = pg.PlotDataItem([], [], pen=None, symbol="s", symbolSize=12,
@@ -121,6 +122,7 @@ class StabilityPlot(PlotView):
                 item.setVisible(item in shown)
                 if item not in shown:
                     item.setData([], [])
+        self._limit_span = None if self.limit_line not in shown else self._limit_span
         for item in shown:  # the legend in a fixed order: the mode's curves, then the shading
             self.legend.addItem(item, item.opts.get("name") or "")
         self.legend.addItem(self.legend_region, "margin &lt; 0")
@@ -138,11 +140,7 @@ class StabilityPlot(PlotView):
         term, unit, bound = kind.coupling_term_label, kind.margin_unit, kind.bound_label()
         self.set_log(True, mode == "log")
         notes = self._draw_ratio(res, term, bound) if mode == "ratio" else self._draw_values(res, term, unit, bound)
-        # the export has the values (signed, in their units) and the ratio, whatever the view
-        w, r = res.w, bound_ratio(res)
-        self._series = [Series(term, "omega (rad/s)", f"{term} ({unit})", *clean_xy(w, res.coupling_term, True)[:2]),
-                        Series(bound, "omega (rad/s)", f"bound ({unit})", *clean_xy(w, res.bound, True)[:2]),
-                        Series(f"bound / {term}", "omega (rad/s)", f"bound / {term} (-)", *clean_xy(w, r, True)[:2])]
+        self._shown = (res, term, unit, bound)  # exported on demand (not on every step of a drag)
         self._draw_regions(res)
         self._draw_binding(res, unit)
         self.set_warning(notes)
@@ -155,7 +153,10 @@ class StabilityPlot(PlotView):
         r = bound_ratio(res)
         x, y, hidden = clean_xy(res.w, r, True, False)
         self.ratio_curve.setData(x, y)
-        self.limit_line.setData([res.w[0], res.w[-1]], [1.0, 1.0])
+        span = (float(res.w[0]), float(res.w[-1]))
+        if span != self._limit_span:  # the same line on every step of a drag: not set again
+            self._limit_span = span
+            self.limit_line.setData(list(span), [1.0, 1.0])
         self.set_legend_text(self.limit_line, "limit 1: stable below (margin 0)")
         return [f"{hidden} point(s) not drawn ({term} not positive)"] if hidden else []
 
@@ -262,6 +263,11 @@ class StabilityPlot(PlotView):
                 best, best_pos = n, p
         label.setPosition(best_pos)
 
+    def place_legend(self) -> None:
+        """The binding label first (at the final size), then the legend around it and the data."""
+        self.place_label()
+        super().place_legend()
+
     def _label_rects(self) -> list[QRectF]:
         label = self.worst_line.label
         return [label.sceneBoundingRect()] if self.worst_line.isVisible() and label.format else []
@@ -281,4 +287,11 @@ class StabilityPlot(PlotView):
         self.worst_point.setBrush(pg.mkBrush(pal["mark"]))
 
     def export_series(self) -> list[Series]:
-        return list(self._series)
+        """The values (signed, in their units) and the ratio, whatever the view shows."""
+        if self._shown is None:
+            return []
+        res, term, unit, bound = self._shown
+        w, r = res.w, bound_ratio(res)
+        return [Series(term, "omega (rad/s)", f"{term} ({unit})", *clean_xy(w, res.coupling_term, True)[:2]),
+                Series(bound, "omega (rad/s)", f"bound ({unit})", *clean_xy(w, res.bound, True)[:2]),
+                Series(f"bound / {term}", "omega (rad/s)", f"bound / {term} (-)", *clean_xy(w, r, True)[:2])]

@@ -16,6 +16,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
 from analysis.sampled import SimulationResult, Verdict
+from analysis.study.quantities import format_number
 
 from app.views.base import PlotView, Series, clean_xy, plain
 
@@ -46,7 +47,7 @@ def pc_note(res: SimulationResult) -> str:
 
 
 def _um(x: float) -> str:
-    return "–" if x is None or not math.isfinite(x) else f"{x * 1e6:.3g} µm"
+    return "–" if x is None or not math.isfinite(x) else f"{format_number(x * 1e6, 3, rich=True)} µm"
 
 
 def verdict_text(v: Verdict, dark: bool = False) -> str:
@@ -98,10 +99,10 @@ class TimePlot(PlotView):
                 item.setData(x, yy)
                 item.setVisible(True)
         self.dropped = dropped
-        if dropped and not self.warning.text():
-            self.set_warning([f"{dropped} non-finite samples (the run diverged) are not drawn; "
+        if dropped and not self.warning_text:
+            self.set_warning([f"{dropped} non-finite or out-of-range samples (the run diverged) are not drawn; "
                               "the CSV export has them"])
-        elif not dropped and self.warning.text().startswith("⚠ ") and "non-finite" in self.warning.text():
+        elif not dropped and self.warning_text.startswith("⚠ ") and "non-finite" in self.warning_text:
             self.set_warning([])
         self.plot.enableAutoRange()
         self.bump()

@@ -16,6 +16,8 @@ from PySide6.QtWidgets import QFrame, QGridLayout, QHBoxLayout, QLabel, QVBoxLay
 from analysis import StabilityResult
 from analysis.study import Headline, format_number
 
+from app.widgets.steady_label import SteadyLabel
+
 __all__ = ["VerdictView"]
 
 
@@ -32,6 +34,10 @@ _TIPS = {
 # two rows of three "title value" pairs: everything visible without widening the window
 _LAYOUT = ((("reserve", "stability reserve"), ("freq", "binds at"), ("eta", "min η")),
            (("margin", "worst margin"), ("kmax", "k_max"), ("bmin", "b_min")))
+#: The widest value each cell expects: its label starts that wide, so that the numbers of a slider
+#: drag change in place (:class:`~app.widgets.steady_label.SteadyLabel`, no layout pass per step).
+_TEMPLATES = {"reserve": "−888.888 %", "freq": "88888.8 rad/s (8888.8 Hz)", "eta": "8.8888",
+              "margin": "−8.88888×10<sup>−88</sup> m/(N·s)", "kmax": "8888888 N/m", "bmin": "88.8888 N·s/m"}
 #: The badge's texts and colours (white text on them: contrast >= 4.5:1).  The line above the badge
 #: (:attr:`question`) says which question it answers (:attr:`analysis.study.Headline.question`): the
 #: virtual coupling's two-port test, not the wall controller's robustness on the Transparency tab.
@@ -80,7 +86,7 @@ class VerdictView(QFrame):
             for c, (key, title) in enumerate(row):
                 t = QLabel(title)
                 t.setAlignment(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
-                v = QLabel("–")
+                v = SteadyLabel("–", _TEMPLATES[key])  # rewritten on every drag step: fixed size
                 v.setTextFormat(Qt.TextFormat.RichText)
                 v.setFont(value_font)
                 self.titles.append(t)
@@ -88,7 +94,7 @@ class VerdictView(QFrame):
                 for w in (t, v):
                     w.setToolTip(_TIPS[key])
                 grid.addWidget(t, r, 2 * c)
-                grid.addWidget(v, r, 2 * c + 1)
+                grid.addWidget(v, r, 2 * c + 1, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter)
                 cells[key] = v
         for c in range(3):
             grid.setColumnStretch(2 * c + 1, 1)
@@ -129,7 +135,8 @@ class VerdictView(QFrame):
 
     def update_result(self, res: StabilityResult) -> None:
         h = Headline.from_result(res)
-        self.question.setText(h.question)
+        if self.question.text() != h.question:
+            self.question.setText(h.question)
         self.badge.setToolTip(h.verdict())
         if h.stable != self._stable:
             self._stable = h.stable

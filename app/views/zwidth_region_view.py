@@ -11,13 +11,14 @@ from __future__ import annotations
 
 import numpy as np
 import pyqtgraph as pg
-from PySide6.QtCore import Qt, Signal, Slot
+from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QWidget
 
 from analysis.sampled import MeasuredTrials, TrialScore, ZWidthRegion
 from analysis.study.quantities import format_number
 
-from app.views.base import PlotView, Series, clean_xy, mark_design_point
+from app.views.pickable import PickablePlotView
+from app.views.base import Series, clean_xy, mark_design_point
 
 __all__ = ["ZWidthRegionView", "B_LABEL", "K_LABEL"]
 
@@ -25,10 +26,9 @@ __all__ = ["ZWidthRegionView", "B_LABEL", "K_LABEL"]
 B_LABEL, K_LABEL = "B (N s/m)", "K (N/m)"
 
 
-class ZWidthRegionView(PlotView):
+class ZWidthRegionView(PickablePlotView):
     """Region, passive region, eq. 9 limit, trials and the current wall on one (B, K) chart."""
 
-    pointPicked = Signal(float, float)  # (B, K) in N s/m, N/m
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__("Z-width: stable virtual walls (B, K)", parent)
@@ -60,7 +60,6 @@ class ZWidthRegionView(PlotView):
         self._series: list[Series] = []
         self._point_note = ""
         self.summary = ""
-        self.plot_widget.scene().sigMouseClicked.connect(self._on_click)
         self.plot_widget.setToolTip("Click to set the virtual wall (b_c, k_c)")
         self.plot_widget.setMinimumSize(260, 200)
 
@@ -135,28 +134,11 @@ class ZWidthRegionView(PlotView):
         self.set_warning([*getattr(self, "_notes", []), self._point_note])
         self.bump()
 
-    @Slot(object)
-    def _on_click(self, event: object) -> None:
-        if event.button() != Qt.MouseButton.LeftButton or event.double():
-            return
-        vb = self.plot.getViewBox()
-        pos = event.scenePos()
-        if not vb.sceneBoundingRect().contains(pos):
-            return
-        b, k = self.data_point(vb.mapSceneToView(pos))
-        event.accept()
-        self.pointPicked.emit(float(b), float(k))
-
     def restyle(self, pal: dict) -> None:
         self.exact.setPen(pg.mkPen(pal["c"], width=2.5))
         self.passive.setPen(pg.mkPen(pal["a"], width=2, style=Qt.PenStyle.DashLine))
         self.twoport.setPen(pg.mkPen(pal["b"], width=2, style=Qt.PenStyle.DashDotLine))
         self.point.setSymbolPen(pg.mkPen(pal["bg"], width=1.5))
-
-    def place_legend(self) -> None:
-        """The legend is a row below the plot (``legend_outside``): never anchored over the data."""
-        if self.legend_row is not None:
-            self.legend_row.fit()
 
     def export_series(self) -> list[Series]:
         return list(self._series)

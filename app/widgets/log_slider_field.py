@@ -180,7 +180,9 @@ class LogSliderField(QWidget):
     def set_error(self, reason: str | None) -> None:
         self.error.setText(reason or "")
         self.error.setVisible(bool(reason))
-        self.spin.setStyleSheet("QDoubleSpinBox { border: 1px solid #d0312d; }" if reason else "")
+        style = "QDoubleSpinBox { border: 1px solid #d0312d; }" if reason else ""
+        if style != self.spin.styleSheet():  # (setting it re-polishes and repaints: every field, every drag step)
+            self.spin.setStyleSheet(style)
 
     # -- widget -> editor -------------------------------------------------------------------------
     def write(self, value: float, drag: int | None = None) -> str | None:

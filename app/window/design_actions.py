@@ -55,7 +55,7 @@ class DesignActions(QObject):
         """k_c := the analysis core's conservative largest k_c for the current b_c."""
         if not self._impedance():
             return
-        d = self.graph.get("max_stiffness")
+        d = self.graph.get("max_stiffness", hold=False)  # the current design, even during a drag
         if d.kc is None:
             self._say(f"No k_c ≥ 0 satisfies eq. (9) with b_c = {d.bc:g} N·s/m", 8000)
             return

@@ -19,7 +19,7 @@ from PySide6.QtWidgets import QApplication, QMainWindow, QSplitter, QTabWidget, 
 
 from analysis.profiles.io import Profile
 
-from app.core.commands import Editor
+from app.core.commands import UNDO_LIMIT, Editor
 from app.core.model import ProfileModel
 from app.core.nodes_stability import build_graph
 from app.core.settings import Settings
@@ -52,6 +52,7 @@ class MainWindow(QMainWindow):
         self.settings = settings if settings is not None else Settings()
         self.model = ProfileModel(profile if profile is not None else default_profile(), self)
         self.undo_stack = QUndoStack(self)
+        self.undo_stack.setUndoLimit(UNDO_LIMIT)
         self.editor = Editor(self.model, self.undo_stack, self)
         self.runner = TaskRunner(self)
         self.graph = build_graph(self.model, self.runner, chart_points)

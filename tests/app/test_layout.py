@@ -173,6 +173,11 @@ def settle(window, qtbot, tab) -> None:
     names = [n for n in tab.nodes if n in g]
     if isinstance(tab, SampledTab):
         names = [n for n in names if n in ASYNC_NODES]
+    else:
+        names = []  # the worker jobs the tab started (the wall's and observer's held curves, for example)
+        qtbot.waitUntil(lambda: not tab.stale, timeout=20000)  # the tab has asked for what it shows
+        qtbot.waitUntil(lambda: not g.runner.running(), timeout=120000)
+    if names:
         qtbot.waitUntil(lambda: all(g.is_fresh(n) for n in names), timeout=120000)
     qtbot.waitUntil(lambda: not tab.stale, timeout=20000)
     qtbot.wait(150)  # deferred layout and legend placement

@@ -18,11 +18,15 @@ def show(window, qtbot) -> ObserverTab:
     tab = window.tab(ObserverTab)
     window.tabs.setCurrentWidget(tab)
     qtbot.waitUntil(lambda: not tab.stale and tab.refreshes > 0, timeout=10000)
+    settle(qtbot, tab)
     return tab
 
 
 def settle(qtbot, tab) -> None:
-    qtbot.waitUntil(lambda: not tab.stale, timeout=10000)
+    """The tab refreshed and the two-axis nodes (on the worker) are fresh."""
+    graph = tab.ctx.graph
+    qtbot.waitUntil(lambda: not tab.stale and all(graph.is_fresh(n) for n in NODES), timeout=10000)
+    qtbot.wait(20)
 
 
 def check_plots(tab: ObserverTab, st: ObserverSettings) -> None:

@@ -87,8 +87,9 @@ def test_map_equals_stability_map(window, qtbot):
     np.testing.assert_allclose(img, ref.spectral_radius, rtol=1e-12, atol=0)
     assert tab.map_view.map.x_name == "kc" and tab.map_view.map.y_name == "kobj"
     # the current design is marked at (k_c, paper wall 500 kN/m)
-    x, y = tab.map_view.point.xData, tab.map_view.point.yData
-    assert (x[0], y[0]) == (p.kc, 500e3)
+    assert tab.map_view.point_xy == (p.kc, 500e3)
+    x, y = tab.map_view.point.getData()  # drawn there (view coordinates: log10 on the log axes)
+    np.testing.assert_allclose((10 ** x[0], 10 ** y[0]), (p.kc, 500e3), rtol=1e-12)
     # change axes and range, with one sample of delay: still the analysis values
     set_section(window, delay_samples=1)
     assert tab.set_map(x="kc", y="grasp_mass") is None

@@ -9,6 +9,9 @@ After every step the invariants hold:
 - the model and the views agree: every field of the parameter panel shows the model's value, and
   the verdict shows the headline that :mod:`analysis.study` computes from the model;
 - undo back to the start restores the starting profile exactly (and redo the current one);
+  the history is bounded (:data:`app.core.commands.UNDO_LIMIT` steps): once the limit drops the
+  oldest step, "the start" is the profile that step left, which the driver recorded before the
+  drop, so the invariant stays exact within the limit (``test_undo_history_is_bounded``);
 - a saved file loads to the same profile (in the round-trip action).
 
 :class:`GuiDriver` holds the actions and the checks; the hypothesis machine draws its arguments, and
@@ -22,6 +25,7 @@ import json
 import math
 import sys
 import tempfile
+import traceback
 from pathlib import Path
 from typing import Any
 
@@ -33,6 +37,7 @@ from PySide6.QtWidgets import QApplication
 
 from analysis.profiles.io import bundled_profiles, load_profile, profile_from_dict, profile_to_dict
 from analysis.study import Headline, stability
+from app.core.commands import UNDO_LIMIT
 from app.core.settings import Settings
 from app.widgets.display_selector import DisplaySelector
 from app.window.main_window import MainWindow
@@ -56,7 +61,7 @@ class GuiDriver:
         self.folder = folder
         self.errors: list[str] = []
         self._old_hook = sys.excepthook
-        sys.excepthook = lambda kind, err, tb: self.errors.append(f"{kind.__name__}: {err}")
+        sys.excepthook = self._on_exception
         self._old_handler = qInstallMessageHandler(self._on_qt_message)
         self.app = QApplication.instance()
         qs = QSettings(str(folder / "zwidth-state-machine.ini"), QSettings.Format.IniFormat)
@@ -68,6 +73,26 @@ class GuiDriver:
         self.saves = 0
         self.pump()
         self.start = profile_json(self.win.model.profile)
+        self._restart_history()
+
+    def _restart_history(self) -> None:
+        """The undo history starts afresh (a new document): no step of it was dropped yet."""
+        self.oldest: object = None  # the oldest undo step at the last check, and the one after it
+        self.second: object = None
+        self.full = False  # the history was at its limit with nothing to redo: a push drops a step
+        self.after_oldest: str | None = None  # the profile the oldest step left (recorded when full)
+
+    def set_undo_limit(self, limit: int) -> None:
+        """Bound the undo history to ``limit`` steps (clears it: Qt sets a limit on an empty stack)."""
+        self.win.undo_stack.clear()
+        self.win.undo_stack.setUndoLimit(limit)
+        self.reset_history()
+
+    def _on_exception(self, kind: type[BaseException], err: BaseException, tb: Any) -> None:
+        """An exception reached Qt's event loop: recorded with where it was raised (the innermost
+        frames, file:line), so that a failure of the long run can be traced without a replay."""
+        where = " < ".join(f"{Path(f.filename).name}:{f.lineno}" for f in reversed(traceback.extract_tb(tb)[-4:]))
+        self.errors.append(f"{kind.__name__}: {err} [{where}]")
 
     def _on_qt_message(self, kind: QtMsgType, _context: object, message: str) -> None:
         if kind in (QtMsgType.QtCriticalMsg, QtMsgType.QtFatalMsg):
@@ -178,17 +203,20 @@ class GuiDriver:
         self.pump()
         assert profile_json(self.win.model.profile) == before
         self.start = before  # an opened file is a fresh document: its undo history starts here
+        self._restart_history()
 
     def load_preset(self, name: str) -> None:
         assert self.win.load_preset(name)
         self.pump()
         self.start = profile_json(self.win.model.profile)
+        self._restart_history()
         assert profile_json(profile_from_dict(json.loads(self.start))) == self.start
 
     def reset_history(self) -> None:
         """Start the undo history afresh from the current profile (after a reported failure)."""
         self.win.undo_stack.clear()
         self.start = profile_json(self.win.model.profile)
+        self._restart_history()
 
     # -- invariants ------------------------------------------------------------------------------------
     def check(self) -> None:
@@ -215,17 +243,31 @@ class GuiDriver:
     def check_undo(self) -> None:
         """Undo everything, compare, redo to where we were, compare.  The model's signals are
         blocked for the round trip: it ends on the very profile the views show (asserted), so
-        nothing needs to redraw, and the check stays cheap however long the history is."""
+        nothing needs to redraw, and the check stays cheap however long the history is.
+
+        At the history's limit a new step drops the oldest one: the start then moves to the
+        profile that the dropped step left, recorded at the previous check."""
         stack, model = self.win.undo_stack, self.win.model
         now, index = profile_json(model.profile), stack.index()
+        oldest = stack.command(0) if stack.count() else None
+        if self.full and oldest is not self.oldest:
+            assert oldest is self.second, "more than one undo step dropped by one action"
+            assert self.after_oldest is not None
+            self.start = self.after_oldest
+        limit = stack.undoLimit()
+        self.full = limit > 0 and index == stack.count() == limit
         model.blockSignals(True)
         try:
             stack.setIndex(0)
             assert profile_json(model.profile) == self.start
+            if self.full:
+                stack.setIndex(1)
+                self.after_oldest = profile_json(model.profile)
             stack.setIndex(index)
             assert profile_json(model.profile) == now
         finally:
             model.blockSignals(False)
+        self.oldest, self.second = oldest, (stack.command(1) if stack.count() > 1 else None)
 
 
 def machine_class(folder: Path) -> type[RuleBasedStateMachine]:
@@ -295,6 +337,35 @@ def test_random_use_keeps_the_window_consistent(qapp, tmp_path):
     run_state_machine_as_test(machine, settings=settings(
         max_examples=4, stateful_step_count=50, derandomize=True, deadline=None, database=None,
         suppress_health_check=list(HealthCheck)))
+
+
+def test_undo_history_is_bounded(qapp, tmp_path):
+    """The window keeps :data:`UNDO_LIMIT` undo steps; at a limit (3 here) the oldest steps are
+    dropped, undo stops at the profile the oldest kept step started from, and the driver's
+    invariant follows the moving start."""
+    driver = GuiDriver(tmp_path)
+    try:
+        stack, model = driver.win.undo_stack, driver.win.model
+        assert stack.undoLimit() == UNDO_LIMIT
+        driver.set_undo_limit(3)
+        states = [profile_json(model.profile)]
+        for i in range(6):  # six k_c values typed in range: six undo steps, the first three dropped
+            driver.type_value("kc", "inside", (i + 1) / 8)
+            driver.check()
+            states.append(profile_json(model.profile))
+        assert len(set(states)) == 7
+        assert stack.count() == 3 and driver.start == states[3]
+        for _ in range(5):  # more undos than steps kept: the last two do nothing
+            driver.undo()
+        assert profile_json(model.profile) == states[3]
+        driver.check()
+        driver.redo()
+        assert profile_json(model.profile) == states[4]
+        driver.type_value("kc", "inside", 0.99)  # a push below the top: drops the redo steps only
+        driver.check()
+        assert stack.count() == 2 and driver.start == states[3]
+    finally:
+        driver.close()
 
 
 if __name__ == "__main__":  # a quick manual run

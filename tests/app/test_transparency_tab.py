@@ -23,7 +23,16 @@ def show(window, qtbot) -> TransparencyTab:
     qtbot.waitUntil(lambda: window.graph.is_fresh("wall_tradeoff") and not tab.stale
                     and tab.tradeoff_drawn is not None and window.graph.is_fresh("wall_point"), timeout=30000)
     qtbot.waitUntil(lambda: tab.refreshes > 0 and tab.optimum_button.isEnabled(), timeout=30000)
+    step_fresh(window, qtbot, tab)
     return tab
+
+
+def step_fresh(window, qtbot, tab) -> None:
+    """The step response (on the worker) is computed for the current B_c and drawn."""
+    qtbot.waitUntil(lambda: not tab.stale and window.graph.is_fresh("wall_step")
+                    and tab.position_plot.data("position")[0].size > 0, timeout=30000)
+    qtbot.wait(20)
+    tab.refresh()
 
 
 def settle(window, qtbot, tab) -> None:
@@ -31,8 +40,7 @@ def settle(window, qtbot, tab) -> None:
                     and tab.tradeoff_drawn is not None
                     and tab.tradeoff_drawn.curves is window.graph.result("wall_tradeoff").curves,
                     timeout=30000)
-    qtbot.wait(20)
-    tab.refresh()
+    step_fresh(window, qtbot, tab)
 
 
 def check_plots(tab: TransparencyTab, st: WallSettings, bc: float) -> None:
@@ -100,13 +108,13 @@ def test_bc_slider_moves_markers_and_step(window, qtbot):
     field.slider.setValue(field.value_to_position(6.0))
     bc = field.position_to_value(field.value_to_position(6.0))
     assert tab.bc == pytest.approx(bc)
-    qtbot.waitUntil(lambda: not tab.stale, timeout=5000)
+    step_fresh(window, qtbot, tab)
     check_plots(tab, window.model.profile.wall, bc)
     assert window.graph.calls("wall_tradeoff") == calls_before  # B_c does not redo the curves
     assert window.undo_stack.count() == 0  # B_c is tab state, not a profile edit
     # the spin box too
     field.spin.setValue(22.5)
-    qtbot.waitUntil(lambda: not tab.stale, timeout=5000)
+    step_fresh(window, qtbot, tab)
     check_plots(tab, window.model.profile.wall, 22.5)
 
 

@@ -5,8 +5,15 @@ and out of range, slider drags, undo/redo, display switch, add/remove mass, the 
 tab switches, save/load round trips, preset loads; after every step: no exception reached Qt, the
 panel and the verdict agree with the model, undo back to the start restores the starting profile).
 Here the steps are drawn by a seeded ``random.Random`` instead of hypothesis (whose example
-buffer does not hold 10^4 steps).  Reported: the steps run, the time per step, and the resident
-memory (RSS) before and after; the target for the growth is under 50 MB.  ``quick``: 300 steps.
+buffer does not hold 10^4 steps).
+
+Reported: the steps run, the time per step (wall and process CPU), the invariant failures (each
+with its step number and the actions that led to it: the seed replays them), and the resident
+memory (RSS): before the run (after every tab was drawn once in both displays), after
+:data:`WARMUP_STEPS` random steps (the caches and Qt's glyph and pixmap caches filled), and at
+the end.  The target is a growth under 50 MB over the whole run.  The RSS is also printed every
+:data:`PROGRESS_EVERY` steps (``python tests/benchmarks/bench_state_machine.py``), so that a
+growth that keeps going can be told from one that flattens.  ``quick``: 300 steps.
 """
 
 from __future__ import annotations
@@ -15,14 +22,19 @@ import gc
 import importlib.util
 import os
 import random
+import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 SEED = 20261201
 STEPS, QUICK_STEPS = 10_000, 300
+#: steps after which the run counts as warmed up (the "growth after warm-up" starts here)
+WARMUP_STEPS = 1000
+PROGRESS_EVERY = 500
 #: relative weights of the actions
 WEIGHTS = {"type_value": 6, "drag": 6, "undo": 4, "redo": 3, "switch_display": 1, "add_mass": 1,
            "remove_mass": 1, "design": 1, "switch_tab": 3, "save_and_load": 1, "load_preset": 0.5}
@@ -47,27 +59,38 @@ def rss_mb() -> float:
         return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
-def _step(driver, rng: random.Random, sm) -> str:
-    """One random action with random arguments; returns its name."""
+def draw_step(driver, rng: random.Random, sm) -> tuple[str, tuple[Any, ...]]:
+    """One random action and its arguments (the driver's method name and positional arguments)."""
     name = rng.choices(list(WEIGHTS), weights=list(WEIGHTS.values()))[0]
     if name == "type_value":
-        driver.type_value(rng.choice(driver.field_names()), rng.choice(sm.TYPED), rng.random())
-    elif name == "drag":
-        driver.drag(rng.choice(driver.field_names()), [rng.randint(-40, 40) for _ in range(rng.randint(1, 6))])
-    elif name == "switch_display":
-        driver.switch_display(rng.choice(["impedance", "admittance"]))
-    elif name == "design":
-        driver.design(rng.choice(["maximize", "minimize"]))
-    elif name == "switch_tab":
-        driver.switch_tab(rng.randrange(10))
-    elif name == "load_preset":
-        driver.load_preset(rng.choice(sm.PRESETS))
-    else:
-        getattr(driver, name)()
-    return name
+        return name, (rng.choice(driver.field_names()), rng.choice(sm.TYPED), rng.random())
+    if name == "drag":
+        return name, (rng.choice(driver.field_names()), [rng.randint(-40, 40) for _ in range(rng.randint(1, 6))])
+    if name == "switch_display":
+        return name, (rng.choice(["impedance", "admittance"]),)
+    if name == "design":
+        return name, (rng.choice(["maximize", "minimize"]),)
+    if name == "switch_tab":
+        return name, (rng.randrange(10),)
+    if name == "load_preset":
+        return name, (rng.choice(sm.PRESETS),)
+    return name, ()
 
 
-def run(quick: bool = False) -> list[dict]:
+def _loadavg() -> str:
+    try:
+        return " ".join(f"{x:.1f}" for x in os.getloadavg())
+    except OSError:
+        return "n/a"
+
+
+def _progress(i: int, t0: float, c0: float, driver) -> None:
+    print(f"step {i}: RSS {rss_mb():.1f} MB, wall {time.perf_counter() - t0:.0f} s, "
+          f"CPU {time.process_time() - c0:.0f} s, undo stack {driver.win.undo_stack.count()}, "
+          f"load {_loadavg()}", file=sys.stderr, flush=True)
+
+
+def run(quick: bool = False, steps: int | None = None) -> list[dict]:
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
     from PySide6.QtCore import QSettings
     from PySide6.QtWidgets import QApplication
@@ -80,12 +103,15 @@ def run(quick: bool = False) -> list[dict]:
     QSettings.setPath(QSettings.Format.IniFormat, QSettings.Scope.UserScope, tempfile.mkdtemp())
     QApplication.instance() or make_application([])
     sm = _machine_module()
-    steps = QUICK_STEPS if quick else STEPS
+    steps = steps or (QUICK_STEPS if quick else STEPS)
+    warmup = min(WARMUP_STEPS, steps // 3)
     rng = random.Random(SEED)
     driver = sm.GuiDriver(Path(tempfile.mkdtemp(prefix="zwidth-sm-")))
     counts: dict[str, int] = {}
     times: list[float] = []
     failures: list[str] = []
+    recent: list[str] = []
+    load_start = _loadavg()
     try:
         for i in range(2 * driver.win.tabs.count()):  # warm up: every tab drawn once, in both displays
             driver.switch_display(["impedance", "admittance"][i % 2])
@@ -94,20 +120,29 @@ def run(quick: bool = False) -> list[dict]:
             driver.check()
         driver.reset_history()
         gc.collect()
-        before = rss_mb()
-        t0 = time.perf_counter()
-        for _ in range(steps):
+        before = warm = rss_mb()
+        t0, c0 = time.perf_counter(), time.process_time()
+        _progress(0, t0, c0, driver)
+        for i in range(1, steps + 1):
             t = time.perf_counter()
-            name = _step(driver, rng, sm)
+            name, args = draw_step(driver, rng, sm)
+            recent = [*recent[-11:], f"{name}{args!r}"]
             try:
+                getattr(driver, name)(*args)
                 driver.check()
             except AssertionError as err:  # reported in the table; the run goes on from a clean state
-                failures.append(f"{name}: {str(err)[:160]}")
+                failures.append(f"step {i} {name}: {str(err)[:300]} | after: {'; '.join(recent)}")
+                print("FAILURE", failures[-1], file=sys.stderr, flush=True)
                 driver.errors.clear()
                 driver.reset_history()
             times.append(time.perf_counter() - t)
             counts[name] = counts.get(name, 0) + 1
-        total = time.perf_counter() - t0
+            if i == warmup:
+                gc.collect()
+                warm = rss_mb()
+            if i % PROGRESS_EVERY == 0:
+                _progress(i, t0, c0, driver)
+        total, cpu = time.perf_counter() - t0, time.process_time() - c0
         driver.win.runner.wait(60000)
         driver.pump(20)
         gc.collect()
@@ -117,15 +152,16 @@ def run(quick: bool = False) -> list[dict]:
     ms = np.array(times) * 1e3
     return [{"name": f"GUI state machine: {steps} random steps, invariants after each (seed {SEED})",
              "median_ms": float(np.median(ms)), "p95_ms": float(np.percentile(ms, 95)), "max_ms": float(ms.max()),
-             "total_s": total, "failures": len(failures)},
+             "total_s": total, "cpu_s": cpu, "failures": len(failures),
+             "load_start": load_start, "load_end": _loadavg()},
             {"name": "GUI state machine: resident memory over the run",
-             "rss_before_mb": before, "rss_after_mb": after, "growth_mb": after - before, "target_growth_mb": 50.0},
+             "rss_before_mb": before, f"rss_at_step_{warmup}_mb": warm, "rss_after_mb": after,
+             "growth_mb": after - before, "growth_after_warmup_mb": after - warm, "target_growth_mb": 50.0},
             {"name": "GUI state machine: actions run " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))},
             *({"name": f"GUI state machine: failure: {f}"} for f in failures[:5])]
 
 
 if __name__ == "__main__":
-    import sys
-
-    for row in run(quick="--quick" in sys.argv):
-        print(row)
+    n = next((int(a) for a in sys.argv[1:] if a.isdigit()), None)
+    for row in run(quick="--quick" in sys.argv, steps=n):
+        print(row, flush=True)

@@ -1,0 +1,43 @@
+"""`zwidth bench --only X --write` merges its tables into BENCHMARKS.md and keeps the others."""
+
+from __future__ import annotations
+
+from app.bench import merge_tables
+
+DOC = """# Benchmarks
+
+prose kept
+
+<!-- bench:begin -->
+Run on day 1 (full run).
+
+### bench_a
+
+| benchmark | ms |
+|---|---|
+| a | 1 |
+
+### bench_b
+
+| benchmark | ms |
+|---|---|
+| b | 2 |
+<!-- bench:end -->
+after
+"""
+
+
+def test_partial_run_replaces_only_its_tables():
+    new_b = "### bench_b\n\n| benchmark | ms |\n|---|---|\n| b | 3 |"
+    out = merge_tables(DOC, [new_b], "day 2", partial=True)
+    assert "| a | 1 |" in out and "| b | 3 |" in out and "| b | 2 |" not in out
+    assert "Run on day 1 (full run)." in out and "Partly re-run on day 2: bench_b." in out
+    assert out.startswith("# Benchmarks\n\nprose kept") and out.rstrip().endswith("after")
+    again = merge_tables(out, [new_b], "day 3", partial=True)
+    assert again.count("Partly re-run") == 1 and "day 3" in again
+
+
+def test_full_run_replaces_the_block():
+    out = merge_tables(DOC, ["### bench_c\n\n| c |"], "day 2")
+    assert "bench_a" not in out and "bench_b" not in out and "### bench_c" in out
+    assert "Run on day 2." in out and out.rstrip().endswith("after")

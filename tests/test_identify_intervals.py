@@ -1,0 +1,118 @@
+"""Profile-likelihood intervals of analysis.identify.fit_chain (analysis/identify/profile.py)
+and the choice between them and the Wald intervals (analysis/identify/uncertainty.py).
+
+* a model that is linear in its one log-parameter (a free mass, continuous actuator FRF
+  ``-1/(m w^2)``): the profile interval is the closed form ``exp(theta +- t_{R-1} s / sqrt(F))``;
+* the HBFD with actuator + gauge at 1 % noise (nearly linear over the intervals): the profile
+  intervals of every parameter agree with the Wald ones;
+* the HBFD with the actuator alone at 1 % noise: the handle side is reported unbounded (not
+  identifiable, with the measurement that fixes it), the others are profiled, and the robust
+  design refuses the unbounded box rather than promise a k_c the data do not support.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from analysis.errors import ValidationError
+from analysis.identify import (
+    device_response,
+    device_value,
+    fit_chain,
+    make_measurement,
+    profile_selection,
+    robust_max_stiffness,
+)
+
+
+from tests.hbfd_fixtures import make_hbfd
+
+T = 1e-3
+W = np.geomspace(1.0, 0.95 * math.pi / T, 400)
+
+
+def _noisy(h: np.ndarray, rng: np.random.Generator, level: float = 0.01) -> np.ndarray:
+    return h * (1 + level * (rng.normal(size=h.size) + 1j * rng.normal(size=h.size)) / math.sqrt(2))
+
+
+def test_profile_interval_of_a_linear_model_is_the_closed_form():
+    # One free mass, continuous actuator FRF H = -1/(m w^2): the log-magnitude residual is linear
+    # in theta = log m with slope -1 at every frequency, the phase residual does not depend on it.
+    rng = np.random.default_rng(11)
+    w = np.geomspace(1.0, 100.0, 200)
+    m = make_measurement(w, _noisy(-1.0 / (0.7 * w**2), rng), "actuator", "free")
+    prof = fit_chain([m], 1, ground_dampings=(), intervals="profile")
+    wald = fit_chain([m], 1, ground_dampings=(), intervals="wald")
+    F, R = w.size, 2 * w.size
+    theta = -np.mean(np.log(np.abs(m.response)) + 2 * np.log(w))  # least squares in closed form
+    rss = 2 * prof.cost
+    half = stats.t.ppf(0.975, R - 1) * math.sqrt(rss / (R - 1)) / math.sqrt(F)
+    assert prof.value("masses[0]") == pytest.approx(math.exp(theta), rel=1e-9)
+    lo, hi = prof.intervals["masses[0]"]
+    assert math.log(lo) == pytest.approx(theta - half, abs=1e-6 * half)
+    assert math.log(hi) == pytest.approx(theta + half, abs=1e-6 * half)
+    assert prof.interval_methods == ("profile",) and wald.interval_methods == ("wald",)
+    # the Wald interval uses z = 1.96 instead of t_{399} = 1.966
+    wl, wh = wald.intervals["masses[0]"]
+    assert math.log(wh / wl) / math.log(hi / lo) == pytest.approx(1.959964 / stats.t.ppf(0.975, R - 1), rel=1e-6)
+
+
+def test_profile_and_wald_agree_where_the_model_is_nearly_linear():
+    d = make_hbfd()
+    rng = np.random.default_rng(31)
+    ms = [make_measurement(W, _noisy(device_response(d, W, q, "free", sample_time=T), rng), q, "free",
+                           sample_time=T) for q in ("actuator", "gauge")]
+    auto = fit_chain(ms, 4, ground_dampings=(3,))
+    assert set(auto.interval_methods) == {"wald"}  # the curvature check passes: no profile needed
+    prof = fit_chain(ms, 4, ground_dampings=(3,), intervals="profile")
+    assert set(prof.interval_methods) == {"profile"}
+    for key in auto.keys:
+        (a, b), (c, e) = auto.intervals[key], prof.intervals[key]
+        v = auto.value(key)
+        # each side within 3 % of the Wald half-width (in log units)
+        assert math.log(c / a) == pytest.approx(0.0, abs=0.03 * math.log(v / a)), key
+        assert math.log(e / b) == pytest.approx(0.0, abs=0.03 * math.log(b / v)), key
+
+
+def test_selection_rules():
+    keys = ("a", "b", "c")
+    q = np.ones((3, 2))
+    rho = np.eye(3)
+    none = np.zeros(3, bool)
+    assert profile_selection("wald", keys, none, q, rho) == ([], [])
+    assert profile_selection("profile", keys, none, q, rho) == ([0, 1, 2], [])
+    assert profile_selection("auto", keys, none, q, rho) == ([], [])
+    bent = q.copy()
+    bent[1, 0] = 0.7  # the RSS rises 30 % less than the linear model predicts below b
+    assert profile_selection("auto", keys, none, bent, rho) == ([1], [])
+    assert profile_selection("auto", keys, np.array([False, False, True]), q, rho) == ([0, 1], [2])
+    with pytest.raises(ValidationError):
+        profile_selection("bootstrap", keys, none, q, rho)
+
+
+def test_actuator_alone_reports_the_handle_side_unbounded_and_no_robust_design():
+    d = make_hbfd()
+    rng = np.random.default_rng(4242)
+    m = make_measurement(W, _noisy(device_response(d, W, "actuator", "free", sample_time=T), rng), "actuator",
+                         "free", sample_time=T)
+    fit = fit_chain([m], 4, ground_dampings=(3,))
+    methods = dict(zip(fit.keys, fit.interval_methods))
+    loose = [k for k, v in methods.items() if v.startswith("unbounded")]
+    assert loose and set(loose) <= {"masses[0]", "stiffnesses[0]", "dampings[0]"}
+    for k in loose:
+        assert fit.intervals[k] == (0.0, math.inf)
+        assert k in fit.non_identifiable and "clamped" in fit.suggestions[k]
+        assert any(k in w and "unbounded" in w for w in fit.warnings)
+    assert all(v.startswith("profile") for k, v in methods.items() if k not in loose)
+    # the actuator side stays determined: narrow profile intervals around the estimate, near the truth
+    for key in ("masses[3]", "stiffnesses[2]", "ground_dampings[3]"):
+        lo, hi = fit.intervals[key]
+        assert lo < fit.value(key) < hi and hi / lo < 1.01
+        assert fit.value(key) == pytest.approx(device_value(d, key), rel=0.01)
+    free = {k: v for k, v, f in zip(fit.keys, fit.intervals.values(), fit.fixed) if not f}
+    with pytest.raises(ValidationError):
+        robust_max_stiffness(fit.device, 100.0, free)
