@@ -104,3 +104,20 @@ def test_axis_titles_use_subscripts(symbol, rich):
     from app.views.base import rich_label
 
     assert rich_label(symbol) == rich
+
+
+def test_rich_numbers_typesets_every_e_number_as_format_number_does():
+    from analysis.study import format_number, rich_numbers
+
+    for x in (3.804e7, -4.5e-8, 1.62e-7, 2.55e11):
+        plain, rich = format_number(x, 4), format_number(x, 4, rich=True)
+        assert "e" in plain
+        assert rich_numbers(f"area {plain} N") == f"area {rich} N"
+    assert rich_numbers("k1e5 and b_2e3 stay") == "k1e5 and b_2e3 stay"  # names, not numbers
+
+
+def test_superscript_numbers_is_plain_text_typesetting():
+    from analysis.study import superscript_numbers
+
+    assert superscript_numbers("rises to 2.55e+11 N·s/m above 3058 rad/s") == "rises to 2.55×10¹¹ N·s/m above 3058 rad/s"
+    assert superscript_numbers("-4.5e-08") == "−4.5×10⁻⁸"

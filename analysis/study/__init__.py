@@ -19,7 +19,7 @@
 from __future__ import annotations
 
 from .displays import ADMITTANCE, DISPLAY_KINDS, IMPEDANCE, DisplayKind, Gain, display_kind, profile_filter
-from .quantities import DIGITS, QUANTITIES, Quantity, format_number, quantity
+from .quantities import DIGITS, QUANTITIES, Quantity, format_number, quantity, rich_numbers, superscript_numbers
 from .headline import DESIGN_KEYS, HEADLINE_KEYS, Headline, designs, headline
 from .compute import (
     DESIGN_CHART,
@@ -104,7 +104,7 @@ from .identify import (
 __all__ = [
     "HOLD_LABELS", "PARAMETER_LABELS", "PLANT_LABELS", "SCENARIO_TIPS", "SCENARIO_TITLES", "scenario_title",
     "ADMITTANCE", "DISPLAY_KINDS", "IMPEDANCE", "DisplayKind", "Gain", "display_kind",
-    "DIGITS", "QUANTITIES", "Quantity", "format_number", "quantity",
+    "DIGITS", "QUANTITIES", "Quantity", "format_number", "quantity", "rich_numbers", "superscript_numbers",
     "DESIGN_KEYS", "HEADLINE_KEYS", "Headline", "designs", "headline",
     "DESIGN_CHART", "EXACT_CHART", "MAP_POINTS", "ChartResult", "delays", "design_chart", "design_radius", "exact_chart",
     "exact_limit", "feasible_damping", "map_arguments", "map_params", "map_point", "max_stiffness", "min_mass",

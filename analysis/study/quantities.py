@@ -9,10 +9,11 @@ in the data and is printed in per cent everywhere.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, replace
 from typing import Any
 
-__all__ = ["Quantity", "QUANTITIES", "quantity", "format_number", "DIGITS"]
+__all__ = ["Quantity", "QUANTITIES", "quantity", "format_number", "rich_numbers", "superscript_numbers", "DIGITS"]
 
 #: significant digits of a printed number unless a quantity says otherwise
 DIGITS = 6
@@ -24,6 +25,28 @@ def _rich(text: str) -> str:
         mant, exp = text.split("e")
         text = f"{mant}×10<sup>{int(exp)}</sup>"
     return text.replace("-", "−")
+
+
+_E_NUMBER = re.compile(r"(?<![\w.])(-?\d+(?:\.\d+)?)e([+-]?\d+)(?!\w)")
+
+
+def rich_numbers(text: str) -> str:
+    """Every ``1.2e+05`` of a plain text as ``1.2×10<sup>5</sup>`` (Qt rich text / HTML), the way
+    :func:`format_number` prints with ``rich=True``: for a line built from plain numbers that a
+    view also shows as rich text."""
+    return _E_NUMBER.sub(lambda m: _rich(f"{m.group(1)}e{m.group(2)}"), text)
+
+
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def superscript_numbers(text: str) -> str:
+    """Every ``2.55e+11`` of a plain text as ``2.55×10¹¹`` in Unicode superscripts: the same
+    typesetting for places that show plain text only (a plot's text items)."""
+    def sub(m: re.Match) -> str:
+        return f"{m.group(1).replace('-', '−')}×10{str(int(m.group(2))).translate(_SUPERSCRIPT)}"
+
+    return _E_NUMBER.sub(sub, text)
 
 
 def format_number(value: Any, digits: int = DIGITS, *, scale: float = 1.0, rich: bool = False) -> str:

@@ -40,8 +40,9 @@ _INPUTS = DEVICE_INPUTS | {"simulation"}  # the device, the controller section a
 
 
 def _b_key(p: Profile) -> Hashable:
+    """The region's B grid and its encoder-noise criterion (both change the region and the optimum)."""
     sec = controller_section(p)
-    return sec.b_range, sec.b_points
+    return sec.b_range, sec.b_points, sec.encoder_resolution, sec.force_noise
 
 
 def _region_key(p: Profile, params: dict) -> Hashable:

@@ -19,6 +19,7 @@ from typing import Any
 
 from PySide6.QtCore import Qt, Slot
 from PySide6.QtWidgets import (
+    QCheckBox,
     QFileDialog,
     QFormLayout,
     QGroupBox,
@@ -32,7 +33,7 @@ from PySide6.QtWidgets import (
 
 from analysis import ValidationError
 from analysis.chain.velocity_filter import VelocityFilter
-from analysis.sampled import load_trials
+from analysis.sampled import DEFAULT_FORCE_NOISE, load_trials
 from analysis.study import controller_section, trial_score, wall_edits, region_wall
 
 from app.core import nodes_zwidth
@@ -55,6 +56,11 @@ __all__ = ["ZWidthTab", "TAB"]
 
 TITLES = {REGION_NODE: "Z-width region", OPTIMUM_NODE: "Optimum filter cut-off"}
 SHORT_TITLES = {REGION_NODE: "Z-width region", OPTIMUM_NODE: "Optimum cut-off"}
+
+
+#: the noise fields' values before the criterion is first switched on: a 10 µm encoder (2¹⁴ counts on a
+#: 26 mm radius) and the default force-noise tolerance
+NOISE_DEFAULTS = (1e-5, DEFAULT_FORCE_NOISE)
 
 
 class ZWidthTab(AsyncJobs, AnalysisTab):
@@ -107,6 +113,7 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
             f.editingFinished.connect(self._on_b_range)
         form.addRow("B from", self.b_min)
         form.addRow("B to", self.b_max)
+        self._noise_controls(form)
         self.import_button = QPushButton("Import trials…")
         self.import_button.setToolTip("A CSV with columns b (N s/m), k (N/m), stable (1/0): hardware trials")
         self.import_button.clicked.connect(self._on_import)
@@ -138,6 +145,23 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         box.setMaximumWidth(320)
         return box
 
+    def _noise_controls(self, form: QFormLayout) -> None:
+        """The encoder-noise criterion (Chawda et al.): B whose quantization force noise exceeds the
+        tolerance is not renderable, so the area falls at high cut-offs too."""
+        self.noise_box = QCheckBox("Encoder noise limit")
+        self.noise_box.setToolTip("Count a wall as unrenderable when its damping turns the encoder's "
+                                  "quantization noise into more force noise than the tolerance")
+        self.encoder = SciSpinBox(suffix=" m")
+        self.encoder.setToolTip("Encoder resolution at the handle (one count), m")
+        self.force_noise = SciSpinBox(suffix=" N")
+        self.force_noise.setToolTip("Force-noise tolerance, N rms")
+        form.addRow(self.noise_box)
+        for label, f in (("Encoder q", self.encoder), ("Force noise", self.force_noise)):
+            f.setMaximumWidth(130)
+            f.editingFinished.connect(self._on_noise)
+            form.addRow(label, f)
+        self.noise_box.toggled.connect(self._on_noise)
+
     # -- edits (undo commands) -------------------------------------------------------------------------
     def _refuse(self, reason: str | None) -> str | None:
         self.error.setText(f"refused: {reason}" if reason else "")
@@ -166,6 +190,19 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
     def set_b_range(self, lo: float, hi: float) -> str | None:
         """Change the region's B range (N s/m); returns a refusal."""
         return self._refuse(self.section.write("b_range", (lo, hi), "B range"))
+
+    def set_noise(self, resolution: float | None, force_noise: float | None = None) -> str | None:
+        """The encoder-noise criterion: resolution (m) and tolerance (N rms), ``None``: off; one undo step."""
+        return self._refuse(self.section.write_many(
+            {"encoder_resolution": resolution, "force_noise": None if resolution is None else force_noise},
+            "encoder noise"))
+
+    @Slot()
+    def _on_noise(self) -> None:
+        if self.noise_box.isChecked():
+            self.set_noise(self.encoder.value(), self.force_noise.value())
+        else:
+            self.set_noise(None)
 
     @Slot()
     def apply_optimum(self) -> str | None:
@@ -209,10 +246,16 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
     def refresh(self) -> None:
         p = self.ctx.model.profile
         sec = controller_section(p)
-        for f, v in ((self.b_min, sec.b_range[0]), (self.b_max, sec.b_range[1])):
+        on = sec.encoder_resolution is not None
+        q = sec.encoder_resolution if on else self.encoder.value() or NOISE_DEFAULTS[0]
+        fn = sec.force_noise if sec.force_noise is not None else self.force_noise.value() or NOISE_DEFAULTS[1]
+        for f, v in ((self.b_min, sec.b_range[0]), (self.b_max, sec.b_range[1]), (self.encoder, q),
+                     (self.force_noise, fn), (self.noise_box, on)):
             f.blockSignals(True)
-            f.setValue(v)
+            f.setChecked(v) if f is self.noise_box else f.setValue(v)
             f.blockSignals(False)
+        self.encoder.setEnabled(on)
+        self.force_noise.setEnabled(on)
         self._errors.pop(TRIALS_NODE, None)
         region, opt = self._pull(REGION_NODE), self._pull(OPTIMUM_NODE)
         trials = self._trials()

@@ -18,7 +18,7 @@ from PySide6.QtGui import QPainterPath
 from PySide6.QtWidgets import QGraphicsPathItem, QWidget
 
 from analysis import StabilityResult
-from analysis.study import display_kind
+from analysis.study import display_kind, rich_numbers, superscript_numbers
 
 from app.views.base import PlotView, Series, clean_xy, plain, rich_label
 
@@ -132,7 +132,7 @@ class RangePlot(PlotView):
             self._series.append(Series("k_max/omega", "omega (rad/s)", "k_max/omega (N s/m)", xk, yk))
         else:
             self.kmax_curve.setData([], [])
-        self.set_legend_text(self.kmax_curve, f"k<sub>max</sub>/ω ({plain(km)} N/m)")
+        self.set_legend_text(self.kmax_curve, f"k<sub>max</sub>/ω ({rich_numbers(plain(km))} N/m)")
         lo, hi = self.default_y
         below = bool(np.isfinite(bm) and bm > 0 and np.isfinite(lo)
                      and math.log10(lo) - math.log10(bm) > BMIN_DECADES)
@@ -144,7 +144,8 @@ class RangePlot(PlotView):
                                        np.array([w[0], w[-1]]), np.array([bm, bm])))
         else:
             self.bmin_curve.setData([], [])
-        self.set_legend_text(self.bmin_curve, f"b<sub>min</sub> ({plain(bm)} N·s/m)" + (", below" if below else ""))
+        self.set_legend_text(self.bmin_curve,
+                             f"b<sub>min</sub> ({rich_numbers(plain(bm))} N·s/m)" + (", below" if below else ""))
         set_text(self.below_scale, f"↓ b_min = {plain(bm)} N·s/m lies below the axis" if below else "")
         self._off_scale_text(w, res, keep)
         self._place_notes()
@@ -167,7 +168,8 @@ class RangePlot(PlotView):
         z = np.abs(np.concatenate([res.zmin[~keep], res.zmax[~keep]]))
         z = z[np.isfinite(z)]
         top = plain(float(z.max()), 3) if z.size else "∞"
-        set_text(self.off_scale, f"↑ off-scale: |Z| rises to {top} N·s/m above ω = {plain(float(w[keep][-1]))} rad/s")
+        set_text(self.off_scale, superscript_numbers(
+            f"↑ off-scale: |Z| rises to {top} N·s/m above ω = {plain(float(w[keep][-1]))} rad/s"))
 
     def _update_fill(self, x1: np.ndarray, y1: np.ndarray, x2: np.ndarray, y2: np.ndarray) -> None:
         if x1.size < 2 or x2.size < 2:

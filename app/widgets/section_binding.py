@@ -38,8 +38,12 @@ class SectionBinding:
         return lambda m: getattr(self.current(m), name)
 
     def write(self, name: str, value: object, label: str, drag: int | None = None) -> str | None:
+        return self.write_many({name: value}, label, drag)
+
+    def write_many(self, changes: dict[str, object], label: str, drag: int | None = None) -> str | None:
+        """Several fields of the section in one undo step; returns the refusal, if any."""
         try:
-            new = self.current().replace(**{name: value})
+            new = self.current().replace(**changes)
         except (ValidationError, TypeError, ValueError) as err:
             reason = describe_error(err)
             self.editor.refused.emit(self.section, reason)

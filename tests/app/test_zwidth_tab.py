@@ -118,3 +118,33 @@ def test_passivity_control_options_in_the_sampled_data_controls(win, qtbot):
     win.undo_stack.undo()
     win.undo_stack.undo()
     assert win.model.profile.simulation is None or not win.model.profile.simulation.options.passivity_control
+
+
+def test_encoder_noise_fields_limit_the_region_in_one_undo_step(win, qtbot):
+    """The noise criterion from the tab: one undo step, the region recomputed with ``b_noise``
+    = F/σ_v (the analysis' own), and undo switches it off again."""
+    from analysis.sampled import estimate_noise
+    from analysis.study import profile_filter
+
+    tab = show(win, qtbot)
+    before = tab.region_view.region
+    assert math.isinf(before.b_noise) and not tab.noise_box.isChecked() and not tab.encoder.isEnabled()
+    depth = win.undo_stack.index()
+    assert tab.set_noise(1e-5, 0.1) is None
+    assert win.undo_stack.index() == depth + 1
+    sec = win.model.profile.controller
+    assert (sec.encoder_resolution, sec.force_noise) == (1e-5, 0.1)
+    qtbot.waitUntil(lambda: tab.region_view.region is not before and win.graph.is_fresh(REGION_NODE), timeout=60000)
+    region = tab.region_view.region
+    p = win.model.profile
+    sigma = estimate_noise(profile_filter(p), p.device.sample_time, 1e-5).velocity_rms
+    assert region.b_noise == pytest.approx(0.1 / sigma, rel=1e-12)
+    assert np.all(region.k_max[region.b > region.b_noise] == 0) and region.area_linear < before.area_linear
+    assert tab.noise_box.isChecked() and tab.encoder.isEnabled() and tab.encoder.value() == 1e-5
+    assert tab.set_noise(-1.0, 0.1) is not None  # refused with the range, nothing changed
+    assert win.model.profile.controller.encoder_resolution == 1e-5
+    win.undo_stack.undo()
+    assert win.model.profile.controller is None
+    qtbot.waitUntil(lambda: math.isinf(tab.region_view.region.b_noise) and win.graph.is_fresh(REGION_NODE),
+                    timeout=60000)
+    assert not tab.noise_box.isChecked()
