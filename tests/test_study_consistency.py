@@ -147,11 +147,11 @@ def test_html_report_equals_study(reference, reports, name):
     for key in NUMBERS + ("worst_frequency",):
         table = zrange if key in ("k_max", "b_min") else verdict
         (printed,) = table[h.quantity(key).name]
-        assert printed == h.quantity(key).number(h.value(key)), key
+        assert printed == h.quantity(key).number(h.value(key), rich=True), key  # the page typesets
         assert_printed(printed + (" %" if key == "stability_reserve" else ""), h.value(key), key)
     for key in h.kind.design_keys:
         (printed,) = design[h.quantity(key).name]
-        assert printed == h.quantity(key).number(h.designs[key]), key
+        assert printed == h.quantity(key).number(h.designs[key], rich=True), key
         assert_printed(printed, h.designs[key], key)
 
 
