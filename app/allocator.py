@@ -22,17 +22,23 @@ _M_TOP_PAD = -2
 _M_MMAP_THRESHOLD = -3
 
 
+def _glibc(name: str) -> ctypes._CFuncPtr | None:
+    """glibc's function ``name`` (Linux), or ``None`` where there is none."""
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        return getattr(ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6"), name)
+    except (OSError, AttributeError):
+        return None
+
+
 def tune_allocator(enable: bool = True) -> bool:
     """Raise (or, with ``enable=False``, restore) glibc's trim and mmap thresholds.
 
     Returns ``True`` when the settings were applied (glibc on Linux), ``False`` elsewhere.
     """
-    if not sys.platform.startswith("linux"):
-        return False
-    try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
-        mallopt = libc.mallopt
-    except (OSError, AttributeError):
+    mallopt = _glibc("mallopt")
+    if mallopt is None:
         return False
     mallopt.argtypes = [ctypes.c_int, ctypes.c_int]
     mallopt.restype = ctypes.c_int
@@ -52,12 +58,8 @@ def trim_heap() -> bool:
     grows to the largest transient working set and stays there.  A memory measurement that asks
     what the process still *uses* (the state-machine benchmark) trims first.  Returns ``False``
     where there is no glibc."""
-    if not sys.platform.startswith("linux"):
-        return False
-    try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
-        trim = libc.malloc_trim
-    except (OSError, AttributeError):
+    trim = _glibc("malloc_trim")
+    if trim is None:
         return False
     trim.argtypes = [ctypes.c_size_t]
     trim.restype = ctypes.c_int

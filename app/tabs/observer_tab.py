@@ -29,13 +29,14 @@ from app.views.base import PlotView, fmt
 from app.views.curves_plot import CurvesPlot
 from app.widgets.task_progress import TASK_TITLES
 from app.tabs.base import AnalysisTab, AppContext
+from app.tabs.held_plots import HeldPlots
 from analysis.study.citations import EOM
 from app.widgets.citation_note import CitationNote
 
 __all__ = ["ObserverTab", "TAB", "observer_settings", "OBSERVER_W", "NODES"]
 
 
-class ObserverTab(AnalysisTab):
+class ObserverTab(HeldPlots, AnalysisTab):
     title = "Disturbance observer"
     order = 40
     nodes = frozenset(NODES)
@@ -50,8 +51,7 @@ class ObserverTab(AnalysisTab):
         super().__init__(ctx, parent)
         self.panel = ObserverPanel(ctx.model, ctx.editor)
         self.fields = self.panel.fields
-        self._drawn: dict[str, object] = {}  # two-axis plot -> the result it shows (redrawn when it changes)
-        self._range_held = False  # the axes stand still during a slider drag
+        self.init_held_plots()
         self._build_plots()
         grid = QGridLayout()
         grid.setSpacing(6)
@@ -71,7 +71,6 @@ class ObserverTab(AnalysisTab):
         lay.addLayout(grid, 1)
         lay.addWidget(CitationNote(EOM))  # the full citation of the tab's equation numbers
         ctx.graph.ready.connect(self._on_ready)
-        ctx.editor.dragChanged.connect(self._on_drag)
 
     def _build_plots(self) -> None:
         w_axis, y_axis = ("ω", "rad/s"), ("|v/u|", "m/(N·s)")
@@ -145,22 +144,6 @@ class ObserverTab(AnalysisTab):
         self.disturbance_plot.set_curve("with", r.w, np.abs(r.disturbance_with))
         self.plant_plot.bump()
         self.disturbance_plot.bump()
-
-    def apply_theme(self, dark: bool) -> None:
-        self._drawn.clear()  # every plot is drawn again in the theme's colours
-        super().apply_theme(dark)
-
-    def _hold_ranges(self, hold: bool) -> None:
-        """Keep the axes still while a slider is dragged (auto-range again after it)."""
-        if hold != self._range_held:
-            self._range_held = hold
-            for view in self.plot_views():
-                view.hold_range(hold)
-
-    @Slot(bool)
-    def _on_drag(self, on: bool) -> None:
-        if not on:  # the drag ended: the axes follow the data again
-            self._hold_ranges(False)
 
     @Slot(str)
     def _on_ready(self, name: str) -> None:

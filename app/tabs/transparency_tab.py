@@ -50,6 +50,7 @@ from app.views.curves_plot import CurvesPlot
 from app.views.wall_summary import inf_spans, wall_summary
 from app.widgets.task_progress import TASK_TITLES
 from app.tabs.base import AnalysisTab, AppContext
+from app.tabs.held_plots import HeldPlots
 from analysis.study.citations import EOM
 from app.widgets.citation_note import CitationNote
 from app.widgets.rich_text_pane import RichTextPane, scrolling_pane
@@ -58,7 +59,7 @@ __all__ = ["TransparencyTab", "TAB", "wall_settings", "wall_design", "WallPoint"
            "WallAdmittances", "admittance_grid", "DEFAULT_BC", "NODES", "HOLD_LABELS"]
 
 
-class TransparencyTab(AnalysisTab):
+class TransparencyTab(HeldPlots, AnalysisTab):
     title = "Transparency (wall)"
     order = 30
     nodes = frozenset(NODES)
@@ -75,8 +76,7 @@ class TransparencyTab(AnalysisTab):
         self.fields = self.panel.fields
         self.bc_field, self.optimum_button = self.panel.bc_field, self.panel.optimum_button
         self.tradeoff_drawn: WallTradeoff | None = None
-        self._drawn: dict[str, tuple] = {}  # plot -> the result objects it shows (redrawn only when they change)
-        self._range_held = False  # the axes stand still during a slider drag
+        self.init_held_plots()
         self._build_plots()
         self.summary = RichTextPane()  # rewritten on every step of a drag: laid out once, in place
         self.summary.setObjectName("wallSummary")
@@ -98,7 +98,6 @@ class TransparencyTab(AnalysisTab):
         self.panel.bcChanged.connect(self._on_bc)
         self.panel.optimumRequested.connect(self.use_optimum)
         ctx.graph.ready.connect(self._on_ready)
-        ctx.editor.dragChanged.connect(self._on_drag)
 
     # -- the current B_c (panel state, a node parameter) -------------------------------------------------
     @property
@@ -208,32 +207,6 @@ class TransparencyTab(AnalysisTab):
     def _busy_text(self, name: str) -> str:
         """While a slider drag holds ``name`` back, that it catches up after the drag."""
         return "updating after the drag…" if name in self.ctx.graph.waiting() else ""
-
-    def _changed(self, view: str, *shown: object) -> bool:
-        """Whether ``view`` must be redrawn: it shows other result objects than ``shown`` (a held
-        result is the same object during a drag: its plots are not redrawn on every step)."""
-        old = self._drawn.get(view)
-        if old is not None and len(old) == len(shown) and all(
-                a is b or (isinstance(a, (str, bool, float)) and a == b) for a, b in zip(old, shown)):
-            return False
-        self._drawn[view] = shown
-        return True
-
-    def apply_theme(self, dark: bool) -> None:
-        self._drawn.clear()  # every plot is drawn again in the theme's colours
-        super().apply_theme(dark)
-
-    def _hold_ranges(self, hold: bool) -> None:
-        """Keep the axes still while a slider is dragged (auto-range again after it)."""
-        if hold != self._range_held:
-            self._range_held = hold
-            for view in self.plot_views():
-                view.hold_range(hold)
-
-    @Slot(bool)
-    def _on_drag(self, on: bool) -> None:
-        if not on:  # the drag ended: the axes follow the data again
-            self._hold_ranges(False)
 
     @Slot(str)
     def _on_ready(self, name: str) -> None:
