@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import faulthandler
 import os
 import sys
 
@@ -23,3 +24,25 @@ from analysis import Device  # noqa: E402
 @pytest.fixture(scope="session")
 def hbfd() -> Device:
     return make_hbfd()
+
+
+# -- the hang watchdog ------------------------------------------------------------------------------
+#: seconds one test may take before the run is stopped with every thread's stack (the slowest test,
+#: the GUI state machine, takes about 100 s here): a hang fails CI at once, and says where
+HANG_LIMIT = 900.0
+_STDERR = pytest.StashKey[int]()
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    # a copy of the real stderr, taken while capture is suspended: the dump must reach the log
+    config.stash[_STDERR] = os.dup(2)
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_protocol(item: pytest.Item, nextitem: pytest.Item | None):
+    fd = item.config.stash[_STDERR]
+    faulthandler.dump_traceback_later(HANG_LIMIT, exit=True, file=fd)
+    try:
+        yield
+    finally:
+        faulthandler.cancel_dump_traceback_later()

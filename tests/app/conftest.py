@@ -32,6 +32,16 @@ def _app_names(qapp):
     yield qapp
 
 
+@pytest.fixture(autouse=True)
+def _no_unanswered_dialogs():
+    """A modal dialog the test did not patch fails the test (with its text) instead of hanging it."""
+    from modal_guard import ModalGuard
+
+    guard = ModalGuard().install()
+    yield guard
+    guard.restore()
+
+
 @pytest.fixture
 def settings(tmp_path):
     from app.core.settings import Settings

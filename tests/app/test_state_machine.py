@@ -35,6 +35,8 @@ from hypothesis.stateful import RuleBasedStateMachine, invariant, rule, run_stat
 from PySide6.QtCore import QCoreApplication, QEvent, QSettings, QtMsgType, qInstallMessageHandler
 from PySide6.QtWidgets import QApplication
 
+from modal_guard import ModalGuard
+
 from analysis.profiles.io import bundled_profiles, load_profile, profile_from_dict, profile_to_dict
 from analysis.study import Headline, stability
 from app.core.commands import UNDO_LIMIT
@@ -63,6 +65,8 @@ class GuiDriver:
         self._old_hook = sys.excepthook
         sys.excepthook = self._on_exception
         self._old_handler = qInstallMessageHandler(self._on_qt_message)
+        # a refused save or load opens a message box: offscreen it would wait for ever, so it fails
+        self._guard = ModalGuard().install()
         self.app = QApplication.instance()
         qs = QSettings(str(folder / "zwidth-state-machine.ini"), QSettings.Format.IniFormat)
         self.win = MainWindow(settings=Settings(qs), profile=load_profile(bundled_profiles()[preset]))
@@ -107,6 +111,7 @@ class GuiDriver:
         self.pump()
         sys.excepthook = self._old_hook
         qInstallMessageHandler(self._old_handler)
+        self._guard.restore()
 
     def pump(self, rounds: int = 4) -> None:
         """Let the window catch up: the coalesced refresh and its repaints (not the worker's jobs),

@@ -44,7 +44,10 @@ WEIGHTS = {"type_value": 6, "drag": 6, "undo": 4, "redo": 3, "switch_display": 1
 
 
 def _machine_module():
-    path = Path(__file__).resolve().parents[1] / "app" / "test_state_machine.py"
+    tests = Path(__file__).resolve().parents[1]
+    if str(tests) not in sys.path:  # the driver imports the test helpers (modal_guard) from tests/
+        sys.path.insert(0, str(tests))
+    path = tests / "app" / "test_state_machine.py"
     spec = importlib.util.spec_from_file_location("zwidth_state_machine", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
