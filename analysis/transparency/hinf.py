@@ -100,7 +100,7 @@ def refine_peaks(evaluate: Callable[[np.ndarray, np.ndarray], np.ndarray], rows:
     """
     a = np.log(lo)
     b = np.log(hi)
-    pts = np.linspace(0.0, 1.0, 7)
+    pts = np.linspace(0.0, 1.0, 13)
     best_x = 0.5 * (a + b)
     best_v = evaluate(rows, np.exp(best_x)[:, None])[:, 0]
     for _ in range(steps):
@@ -112,7 +112,7 @@ def refine_peaks(evaluate: Callable[[np.ndarray, np.ndarray], np.ndarray], rows:
         best_v = np.where(better, vi, best_v)
         best_x = np.where(better, x[np.arange(x.shape[0]), i], best_x)
         il = np.maximum(i - 1, 0)
-        ir = np.minimum(i + 1, 6)
+        ir = np.minimum(i + 1, 12)
         a, b = x[np.arange(x.shape[0]), il], x[np.arange(x.shape[0]), ir]
         if np.all(b - a <= 1e-9):
             break

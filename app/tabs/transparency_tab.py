@@ -54,6 +54,7 @@ from app.tabs.held_plots import HeldPlots
 from analysis.study.citations import EOM
 from app.widgets.citation_note import CitationNote
 from app.widgets.rich_text_pane import RichTextPane, scrolling_pane
+from app.widgets.text_pacer import TextPacer
 
 __all__ = ["TransparencyTab", "TAB", "wall_settings", "wall_design", "WallPoint", "WallTradeoff",
            "WallAdmittances", "admittance_grid", "DEFAULT_BC", "NODES", "HOLD_LABELS"]
@@ -72,6 +73,8 @@ class TransparencyTab(HeldPlots, AnalysisTab):
 
     def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
         super().__init__(ctx, parent)
+        # the numbers in the legends and the summary: ten updates a second during a drag
+        self.texts = TextPacer(lambda: ctx.graph.interactive, self)
         self.panel = WallPanel(ctx.model, ctx.editor)
         self.fields = self.panel.fields
         self.bc_field, self.optimum_button = self.panel.bc_field, self.panel.optimum_button
@@ -197,10 +200,9 @@ class TransparencyTab(HeldPlots, AnalysisTab):
             busy, text = not graph.is_fresh(name), self._busy_text(name)
             for view in views:
                 view.set_busy(busy, text)
-        summary = for_theme(wall_summary(st, point, trade if fresh else None,
-                                         wall_device_label(self.ctx.model.profile)), self.dark)
-        if summary != self.summary.text():
-            self.summary.setText(summary)
+        label = wall_device_label(self.ctx.model.profile)
+        self.texts.show("summary", lambda: self.summary.setText(
+            for_theme(wall_summary(st, point, trade if fresh else None, label), self.dark)))
         self.refreshes += 1
         self.stale = False
 
@@ -249,6 +251,9 @@ class TransparencyTab(HeldPlots, AnalysisTab):
         self.peak_plot.set_marker("current", point.bc, point.peak.gain_db)
         for v in (self.index_plot, self.peak_plot):
             v.set_line("bc", point.bc)
+        self.texts.show("point", lambda: self._point_texts(point, trade))
+
+    def _point_texts(self, point: WallPoint, trade: WallTradeoff | None) -> None:
         self.index_plot.set_legend_text("current", f"B<sub>c</sub> = {fmt(point.bc)}: J = "
                                         f"{fmt(point.index.index) if point.index.finite else '∞'}")
         self.peak_plot.set_legend_text("current", f"B<sub>c</sub> = {fmt(point.bc)}: "
@@ -262,7 +267,8 @@ class TransparencyTab(HeldPlots, AnalysisTab):
         self.admittance_plot.set_curve("yv", adm.w, np.abs(adm.yv))
         self.admittance_plot.set_curve("yt", adm.w, np.abs(adm.yt))
         self.admittance_plot.set_line("nyquist", adm.nyquist if adm.nyquist < adm.w[-1] else None)
-        self.admittance_plot.set_legend_text("yt", f"|Y<sub>t</sub>| transmitted, B<sub>c</sub> = {fmt(adm.bc)}")
+        self.texts.show("admittance", lambda: self.admittance_plot.set_legend_text(
+            "yt", f"|Y<sub>t</sub>| transmitted, B<sub>c</sub> = {fmt(adm.bc)}"))
         self.admittance_plot.bump()
 
     def _draw_step(self, step: StepResponse, st: WallSettings) -> None:

@@ -12,6 +12,7 @@ from shiboken6 import isValid
 from app.core.compute_graph import ComputeGraph
 from app.tabs import AnalysisTab
 from app.views.verdict import VerdictView
+from app.widgets.text_pacer import TextPacer
 
 __all__ = ["LiveRefresh"]
 
@@ -25,6 +26,8 @@ class LiveRefresh(QObject):
         self.graph, self.verdict, self.tabs, self.analysis_tabs = graph, verdict, tabs, analysis_tabs
         self.verdict_stale = True
         self._scheduled = False
+        # the verdict's numbers: every step outside a drag, ten times a second during one
+        self.texts = TextPacer(lambda: graph.interactive, self)
         graph.invalidated.connect(self._on_invalidated)
         tabs.currentChanged.connect(lambda _i: self.schedule())
 
@@ -52,7 +55,8 @@ class LiveRefresh(QObject):
         if not (isValid(self.tabs) and isValid(self.verdict)):
             return  # the window closed before this queued refresh ran
         if self.verdict_stale:
-            self.verdict.update_result(self.graph.get(self.graph.stability_name))
+            result = self.graph.get(self.graph.stability_name)
+            self.texts.show("verdict", lambda: self.verdict.update_result(result) if isValid(self.verdict) else None)
             self.verdict_stale = False
         current = self.tabs.currentWidget()
         if isinstance(current, AnalysisTab) and current.stale:

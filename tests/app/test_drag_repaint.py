@@ -225,3 +225,33 @@ def test_a_drag_on_the_sampled_tab_lays_nothing_out_and_holds_the_bound(window, 
     kc = g.result("max_stiffness").kc
     assert g.is_fresh("max_stiffness") and kc > 0
     assert "two-port bound (eq. 9, delay-free model): " in tab.summary.text()
+
+
+def test_the_verdict_numbers_follow_a_drag_at_a_reading_pace_and_end_exact(window, qtbot):
+    """Ten drag steps (no pause): the plots follow each, the verdict's numbers are paced (here at
+    one update per 10 s, so that a slow machine counts the same); the release shows the verdict of
+    the final gains at once."""
+    from analysis.study import Headline, stability
+
+    tab = window.tab(StabilityTab)
+    window.tabs.setCurrentWidget(tab)
+    qtbot.waitUntil(lambda: not tab.stale, timeout=10000)
+    window.graph.drag.settle_ms = 600_000
+    window.live.texts.interval_ms = 10_000
+    slider = window.panel.fields["kc"].slider
+    revision, plots = window.verdict.revision, tab.plot_views()[0].revision
+    slider.setSliderDown(True)
+    try:
+        for _ in range(10):
+            slider.setValue(slider.value() + 3)
+            QApplication.processEvents()
+        assert tab.plot_views()[0].revision >= plots + 10  # the plot followed every step
+        assert window.verdict.revision - revision == 1  # the numbers: the first step only
+        assert window.live.texts.pending == ["verdict"]
+    finally:
+        slider.setSliderDown(False)
+    qtbot.waitUntil(lambda: not window.live.texts.pending and not tab.stale, timeout=5000)
+    QApplication.processEvents()
+    h = Headline.from_result(stability(window.model.profile))
+    assert window.verdict.margin.text() == h.text("worst_margin", rich=True)
+    assert window.verdict.reserve.text() == h.text("stability_reserve", rich=True)
