@@ -90,8 +90,10 @@ def refine_peaks(evaluate: Callable[[np.ndarray, np.ndarray], np.ndarray], rows:
                  lo: np.ndarray, hi: np.ndarray, steps: int = 40) -> tuple[np.ndarray, np.ndarray]:
     """Zoom each bracket ``[lo, hi]`` (rad/s, > 0) onto the maximum of ``evaluate``.
 
-    Each step keeps a third of the bracket.  It stops when every bracket is narrower than 1e-9
-    in ln(w): the peak value is then exact to about ``Q**2 * 1e-18`` relative (``Q`` the peak's
+    Each step evaluates 13 points and keeps a sixth of the bracket (two of its twelve intervals):
+    half the calls of 7 points and a third, which matters for one bracket (the live value during
+    a drag), where a call's overhead outweighs its points.  It stops when every bracket is narrower
+    than 1e-9 in ln(w): the peak value is then exact to about ``Q**2 * 1e-18`` relative (``Q`` the peak's
     quality factor), far below the 1e-12 the tests ask, in about half the steps of a bracket
     shrunk to round-off.
 
