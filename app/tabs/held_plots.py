@@ -1,6 +1,6 @@
 """Plots that stand still during a slider drag: the axes keep their range while the drag moves,
 and a plot is redrawn only when the results it shows change (a result held back by the drag is
-the same object on every step).  Used by the Transparency and Observer tabs.
+the same object on every step).  Used by the Sampled-data, Transparency and Observer tabs.
 """
 
 from __future__ import annotations
@@ -34,8 +34,12 @@ class HeldPlots:
         """Keep the axes still while a slider is dragged (auto-range again after it)."""
         if hold != self._range_held:
             self._range_held = hold
-            for view in self.plot_views():
+            for view in self.held_views():
                 view.hold_range(hold)
+
+    def held_views(self) -> list:
+        """The plots whose axes stand still during a drag (all by default)."""
+        return self.plot_views()
 
     def _on_drag(self, on: bool) -> None:
         if not on:  # the drag ended: the axes follow the data again

@@ -54,6 +54,8 @@ from app.widgets.rich_text_pane import RichTextPane
 from app.widgets.task_progress import TASK_TITLES
 from app.tabs.async_jobs import AsyncJobs
 from app.tabs.base import AnalysisTab, AppContext
+from app.tabs.held_plots import HeldPlots
+from app.widgets.text_pacer import TextPacer
 from analysis.study.citations import ADAMS, HANNAFORD_RYU
 from app.widgets.citation_note import CitationNote
 
@@ -74,7 +76,7 @@ def _column(*widgets: QWidget) -> QWidget:
     return w
 
 
-class SampledTab(AsyncJobs, AnalysisTab):
+class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
     job_titles = TITLES  # the background nodes: cancel, failure and run-again (AsyncJobs)
     title = "Sampled-data"
     order = 30
@@ -88,9 +90,10 @@ class SampledTab(AsyncJobs, AnalysisTab):
 
     def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
         super().__init__(ctx, parent)
+        self.init_held_plots()
+        self.texts = TextPacer(lambda: ctx.graph.interactive, self)  # the summary: 10 Hz during a drag
         self._held: dict[str, Hashable] = {}  # node -> key not to restart (cancelled or failed)
         self._errors: dict[str, str] = {}
-        self._drawn: dict[str, tuple] = {}  # view -> the results it shows (redrawn only when they change)
         self.map_view = StabilityMapView()
         self.exact_view = ExactLimitChart()
         self.time_view = TimeResponse()
@@ -207,6 +210,7 @@ class SampledTab(AsyncJobs, AnalysisTab):
         g.set_params(MAP_NODE, **settings)
         g.set_params(POINT_NODE, x=settings["x"], y=settings["y"])
         m, chart, limit, sim = (self._pull(name) for name in ASYNC_NODES)
+        self._hold_ranges(g.interactive)  # still axes during a drag: only the markers repaint
         # the two-port chart behind the exact limit: not restarted on every step of a drag
         bound_chart = g.result("design_chart") if g.holding else g.request("design_chart")
         self._draw_map(p, m)
@@ -214,22 +218,12 @@ class SampledTab(AsyncJobs, AnalysisTab):
         # the two-port bound at the current b_c (its refinement is held back while a drag moves)
         design = g.get("max_stiffness") if display_kind(p).is_impedance else None
         bound = design.kc if design is not None and g.is_fresh("max_stiffness") else None
-        self.summary.setText(for_theme(exact_summary(p, limit if g.is_fresh(LIMIT_NODE) else None, bound,
-                                                     *delays(p), bound_pending="max_stiffness" in g.waiting()),
-                                       self.dark))
+        text = exact_summary(p, limit if g.is_fresh(LIMIT_NODE) else None, bound, *delays(p),
+                             bound_pending="max_stiffness" in g.waiting())
+        self.texts.show("summary", lambda: self.summary.setText(for_theme(text, self.dark)))
         self._draw_simulation(sim)
         self.refreshes += 1
         self.stale = False
-
-    def _changed(self, view: str, *shown: object) -> bool:
-        """Whether ``view`` must be redrawn: it shows other result objects (or other texts) than
-        ``shown``.  A refresh during a slider drag then repaints only what moved."""
-        old = self._drawn.get(view)
-        if old is not None and len(old) == len(shown) and all(
-                a is b or (isinstance(a, str) and a == b) for a, b in zip(old, shown)):
-            return False
-        self._drawn[view] = shown
-        return True
 
     def _draw_map(self, p: Profile, m: StabilityMap | None) -> None:
         if m is not None and m.x_name == self.map_panel.settings(p.display)["x"]:
@@ -283,6 +277,11 @@ class SampledTab(AsyncJobs, AnalysisTab):
 
     def plot_views(self) -> list[PlotView]:
         return [self.map_view, self.exact_view, *self.time_view.plot_views()]
+
+    def held_views(self) -> list[PlotView]:
+        """The map and the exact chart, whose current-design markers move during a drag (the
+        simulation's plots keep their result then, and their axes with it)."""
+        return [self.map_view, self.exact_view]
 
 
 

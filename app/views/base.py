@@ -159,6 +159,7 @@ class PlotView(QWidget):
         super().__init__(parent)
         self.title = title
         self.revision = 0  # bumps on every data update (tests, benchmarks)
+        self._auto_before_hold: tuple | None = None  # the auto-range state a drag's hold keeps
         self._dark = False
         self.legend_row: LegendRow | None = None  # set when the legend is moved below the plot
         self._log_x = self._log_y = False
@@ -289,12 +290,17 @@ class PlotView(QWidget):
             label.setText(text)
 
     def hold_range(self, hold: bool) -> None:
-        """Keep the axes still (no auto-range) while a slider is dragged; auto-range again after."""
+        """Keep the axes still (no auto-range) while a slider is dragged; after it, each axis
+        auto-ranges again if it did before (a range the user zoomed to stays)."""
         vb = self.plot.getViewBox()
         if hold:
+            if self._auto_before_hold is None:
+                self._auto_before_hold = tuple(vb.autoRangeEnabled())
             vb.disableAutoRange()
-        elif not all(vb.autoRangeEnabled()):
-            vb.enableAutoRange()
+        elif self._auto_before_hold is not None:
+            x, y = self._auto_before_hold
+            self._auto_before_hold = None
+            vb.enableAutoRange(x=x if x else False, y=y if y else False)
 
     def set_warning(self, messages: list[str]) -> None:
         text = "  ".join(f"⚠ {m}" for m in messages if m)

@@ -178,7 +178,10 @@ def drag(window, qtbot, tab, field, steps: int = 8) -> LayoutRequests:
     slider.setSliderDown(True)
     slider.setValue(slider.value() + 2)
     qtbot.waitUntil(lambda: not tab.stale, timeout=10000)
-    qtbot.wait(200)  # what the first step (and the tab's first show) laid out
+    qtbot.wait(200)  # what the first step (and the tab's first show) laid out ...
+    for _ in range(10):  # ... to the end, also on a loaded machine (whose timers fire late)
+        QApplication.sendPostedEvents(None, QEvent.Type.LayoutRequest)
+        qtbot.wait(30)
     requests = LayoutRequests(window, window.centralWidget(), tab, window.verdict)
     try:
         for _ in range(steps):
