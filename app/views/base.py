@@ -298,9 +298,8 @@ class PlotView(QWidget):
                 self._auto_before_hold = tuple(vb.autoRangeEnabled())
             vb.disableAutoRange()
         elif self._auto_before_hold is not None:
-            x, y = self._auto_before_hold
-            self._auto_before_hold = None
-            vb.enableAutoRange(x=x if x else False, y=y if y else False)
+            (x, y), self._auto_before_hold = self._auto_before_hold, None
+            vb.enableAutoRange(x=x or False, y=y or False)
 
     def set_warning(self, messages: list[str]) -> None:
         text = "  ".join(f"⚠ {m}" for m in messages if m)
