@@ -21,7 +21,7 @@ import math
 import numpy as np
 import pyqtgraph as pg
 from PySide6.QtCore import QRectF, Qt
-from PySide6.QtWidgets import QWidget
+from PySide6.QtWidgets import QGraphicsEllipseItem, QGraphicsItem, QWidget
 
 from analysis import StabilityResult
 from analysis.study import display_kind
@@ -71,10 +71,13 @@ class StabilityPlot(PlotView):
         self.bound_negative = self.curve("|bound| where bound &lt; 0", "#d9480f", width=1.2,
                                          style=Qt.PenStyle.DotLine)
         self.ratio_curve = self.curve("bound / Re(1/Z<sub>c</sub>)", "#1f5fbf")
-        # one spot at the item's origin, moved with setPos (view coordinates): rebuilding a
-        # scatter's spot table on every slider step costs more than the curves' update
-        self.worst_point = pg.ScatterPlotItem(pos=[(0.0, 0.0)], size=9, brush=pg.mkBrush("#c92a2a"),
-                                              pen=pg.mkPen("w"), pxMode=True)
+        # a 9 px dot moved with setPos (view coordinates), drawn by Qt itself: a one-spot
+        # ScatterPlotItem costs about 1 ms of Python on every repaint of a drag step
+        self.worst_point = QGraphicsEllipseItem(-4.5, -4.5, 9.0, 9.0)
+        self.worst_point.setFlag(QGraphicsItem.GraphicsItemFlag.ItemIgnoresTransformations)
+        self.worst_point.setBrush(pg.mkBrush("#c92a2a"))
+        self.worst_point.setPen(pg.mkPen("w"))
+        self.worst_point.setZValue(25)
         self.worst_point.hide()
         self.plot.addItem(self.worst_point, ignoreBounds=True)
         self.worst_xy = (math.nan, math.nan)  # the marker in data units (tests)
@@ -87,6 +90,9 @@ class StabilityPlot(PlotView):
         self.plot.addItem(self.zero_line, ignoreBounds=True)
         # the limit of the ratio view, in the auto-range so that 1 is always on screen
         self.limit_line = self.curve("limit 1 (margin 0)", "#c92a2a", width=1.2, style=Qt.PenStyle.DashLine)
+        # the same dashed line on every step of a drag (held axes): kept as a pixmap, not stroked
+        # again (about 1 ms a repaint; exports draw it afresh, PlotView.render_into)
+        self.limit_line.curve.setCacheMode(QGraphicsItem.CacheMode.DeviceCoordinateCache)
         self._regions: list[pg.LinearRegionItem] = []
         self._bad_brush = (220, 40, 40, 45)
         self._shown: tuple[StabilityResult, str, str, str] | None = None  # what is drawn (exports)
