@@ -66,11 +66,14 @@ class CurvesPlot(PlotView):
         return item
 
     def add_marker(self, key: str, name: str, color: str = "mark", symbol: str = "o", size: float = 10.0,
-                   export_name: str | None = None) -> pg.PlotDataItem:
+                   export_name: str | None = None) -> pg.ScatterPlotItem:
+        """One point, moved on every step of a drag: a bare scatter item in view coordinates (a
+        one-point ``PlotDataItem`` rebuilds its curve and scatter on every ``setData``)."""
         c = self.palette_colors()[color]
-        item = self.plot.plot([], [], name=name, pen=None, symbol=symbol, symbolSize=size,
-                              symbolBrush=pg.mkBrush(c), symbolPen=pg.mkPen(c))
+        item = pg.ScatterPlotItem(size=size, symbol=symbol, brush=pg.mkBrush(c), pen=pg.mkPen(c), name=name,
+                                  pxMode=True)
         item.setZValue(20)
+        self.plot.addItem(item)
         self._styles[key] = ("marker", color, size, symbol)
         self.items[key] = item
         self._export_names[key] = export_name or key
@@ -99,6 +102,9 @@ class CurvesPlot(PlotView):
     def set_log(self, x: bool, y: bool) -> None:
         if (x, y) != self.is_log():
             self._raw = {}  # the same data is drawn otherwise on other axes
+            for key in [k for k, style in getattr(self, "_styles", {}).items() if style[0] == "marker"]:
+                self._data.pop(key, None)  # in view coordinates: set again by the next set_marker
+                self.items[key].setData(pos=[])
         super().set_log(x, y)
 
     def showEvent(self, event: object) -> None:  # noqa: N802 - Qt API
@@ -144,10 +150,15 @@ class CurvesPlot(PlotView):
 
     def set_marker(self, key: str, x: float | None, y: float | None) -> None:
         """One point (or none when ``x``/``y`` is ``None`` or cannot be drawn)."""
-        if x is None or y is None:
-            self.set_curve(key, [], [])
-        else:
-            self.set_curve(key, [x], [y])
+        lx, ly = self.is_log()
+        xc, yc, hidden = clean_xy([] if x is None or y is None else [x], [] if x is None or y is None else [y], lx, ly)
+        old = self._data.get(key)
+        if old is not None and np.array_equal(old[0], xc) and np.array_equal(old[1], yc):
+            return
+        pos = [(math.log10(xc[0]) if lx else xc[0], math.log10(yc[0]) if ly else yc[0])] if xc.size else []
+        self.items[key].setData(pos=pos)
+        self._data[key] = (xc, yc)
+        self.hidden_points[key] = hidden
 
     def set_line(self, key: str, pos: float | None) -> None:
         line = self.lines[key]
@@ -203,8 +214,8 @@ class CurvesPlot(PlotView):
                 for item in self.regions[key]:
                     item.setBrush(pg.mkBrush(c))
             elif kind == "marker":
-                self.items[key].setSymbolBrush(pg.mkBrush(c))
-                self.items[key].setSymbolPen(pg.mkPen(c))
+                self.items[key].setBrush(pg.mkBrush(c))
+                self.items[key].setPen(pg.mkPen(c))
             else:
                 self.lines[key].setPen(pg.mkPen(c, width=a, style=b))
                 label = getattr(self.lines[key], "label", None)
