@@ -39,6 +39,10 @@ def gauss_nodes(breaks: np.ndarray, order: int = 16) -> tuple[np.ndarray, np.nda
     return nodes, weights
 
 
+#: the narrowest panel, relative to its left end (:func:`panel_breakpoints`)
+MIN_PANEL = 1e-9
+
+
 def panel_breakpoints(lo: float, hi: float, singularities: np.ndarray, per_decade: float = 8.0,
                       fraction: float = 0.5, max_width: float = np.inf) -> np.ndarray:
     """Breakpoints from ``lo`` to ``hi`` (both > 0).
@@ -48,6 +52,9 @@ def panel_breakpoints(lo: float, hi: float, singularities: np.ndarray, per_decad
     integrand (as ``w0 + j sigma``), and ``h <= max_width``.  With ``fraction = 1/2`` the
     nearest singularity is at least three panel half-widths from the panel centre (Bernstein
     ellipse parameter >= 3 + sqrt 8), so 16-point Gauss-Legendre errs by ~1e-24 relative.
+    A panel is never narrower than ``MIN_PANEL * a``: a singularity closer to the real axis than
+    that (``|sigma| < 2e-9 w0``, e.g. an undamped plant mode) costs about 60 panels instead of
+    an endless approach.
     """
     sing = np.asarray(singularities, dtype=complex).ravel()
     step = 10.0 ** (1.0 / per_decade) - 1.0
@@ -58,7 +65,10 @@ def panel_breakpoints(lo: float, hi: float, singularities: np.ndarray, per_decad
         if sing.size:
             d = float(np.min(np.abs(a - sing)))
             h = min(h, fraction * d)
-        h = min(h, max_width)
+        # never narrower than MIN_PANEL * a: a singularity on the real axis (an undamped plant
+        # mode, sigma = 0) would otherwise be approached in ever smaller steps and, once a step
+        # fell below the spacing of doubles, never passed (the loop ran until memory ran out)
+        h = min(max(h, MIN_PANEL * a), max_width)
         a = min(a + h, hi)
         if hi - a < 1e-9 * hi:
             a = hi
