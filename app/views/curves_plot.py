@@ -18,6 +18,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QGraphicsItem, QGraphicsTextItem, QSizePolicy, QWidget
 
 from app.views.base import PlotView, Series, clean_xy
+from app.views.marker import design_marker, move_marker
 
 __all__ = ["CurvesPlot"]
 
@@ -70,9 +71,7 @@ class CurvesPlot(PlotView):
         """One point, moved on every step of a drag: a bare scatter item in view coordinates (a
         one-point ``PlotDataItem`` rebuilds its curve and scatter on every ``setData``)."""
         c = self.palette_colors()[color]
-        item = pg.ScatterPlotItem(size=size, symbol=symbol, brush=pg.mkBrush(c), pen=pg.mkPen(c), name=name,
-                                  pxMode=True)
-        item.setZValue(20)
+        item = design_marker(name, symbol, size, c, pg.mkPen(c))
         self.plot.addItem(item)
         self._styles[key] = ("marker", color, size, symbol)
         self.items[key] = item
@@ -104,7 +103,7 @@ class CurvesPlot(PlotView):
             self._raw = {}  # the same data is drawn otherwise on other axes
             for key in [k for k, style in getattr(self, "_styles", {}).items() if style[0] == "marker"]:
                 self._data.pop(key, None)  # in view coordinates: set again by the next set_marker
-                self.items[key].setData(pos=[])
+                move_marker(self.items[key], math.nan, math.nan)
         super().set_log(x, y)
 
     def showEvent(self, event: object) -> None:  # noqa: N802 - Qt API
@@ -150,13 +149,9 @@ class CurvesPlot(PlotView):
 
     def set_marker(self, key: str, x: float | None, y: float | None) -> None:
         """One point (or none when ``x``/``y`` is ``None`` or cannot be drawn)."""
-        lx, ly = self.is_log()
-        xc, yc, hidden = clean_xy([] if x is None or y is None else [x], [] if x is None or y is None else [y], lx, ly)
-        old = self._data.get(key)
-        if old is not None and np.array_equal(old[0], xc) and np.array_equal(old[1], yc):
-            return
-        pos = [(math.log10(xc[0]) if lx else xc[0], math.log10(yc[0]) if ly else yc[0])] if xc.size else []
-        self.items[key].setData(pos=pos)
+        log = self.is_log()
+        xc, yc, hidden = clean_xy([] if x is None or y is None else [x], [] if x is None or y is None else [y], *log)
+        move_marker(self.items[key], xc[0] if xc.size else math.nan, yc[0] if yc.size else math.nan, log)
         self._data[key] = (xc, yc)
         self.hidden_points[key] = hidden
 

@@ -1,4 +1,4 @@
-"""The current-design marker of a log-log chart, moved on every step of a slider drag.
+"""The current-design marker of a chart (log-log by default), moved on every step of a slider drag.
 
 A one-point ``PlotDataItem`` rebuilds its curve, its scatter item and its spot table on every
 ``setData`` (about a millisecond); the marker here is a bare ``ScatterPlotItem`` in view
@@ -24,14 +24,14 @@ def design_marker(name: str, symbol: str, size: float, brush: str, pen: object) 
     return item
 
 
-def move_marker(item: pg.ScatterPlotItem, x: float, y: float) -> bool:
-    """Put the marker at ``(x, y)`` (data units, log-log axes); hide it where a log axis cannot show
-    the point.  Returns whether it is drawn."""
-    drawn = x > 0 and y > 0 and math.isfinite(x) and math.isfinite(y)
+def move_marker(item: pg.ScatterPlotItem, x: float, y: float, log: tuple[bool, bool] = (True, True)) -> bool:
+    """Put the marker at ``(x, y)`` (data units; ``log``: which axes are logarithmic, both by
+    default); hide it where an axis cannot show the point.  Returns whether it is drawn."""
+    drawn = math.isfinite(x) and math.isfinite(y) and (x > 0 or not log[0]) and (y > 0 or not log[1])
     xy = (float(x), float(y)) if drawn else None
     if xy != item.design_xy:
         item.design_xy = xy
-        item.setData(pos=[(math.log10(x), math.log10(y))] if xy is not None else [])
+        item.setData(pos=[(math.log10(x) if log[0] else x, math.log10(y) if log[1] else y)] if xy is not None else [])
     return drawn
 
 
