@@ -109,9 +109,12 @@ def test_actuator_alone_reports_the_handle_side_unbounded_and_no_robust_design()
         assert any(k in w and "unbounded" in w for w in fit.warnings)
     assert all(v.startswith("profile") for k, v in methods.items() if k not in loose)
     # the actuator side stays determined: narrow profile intervals around the estimate, near the truth
+    # (within 2 %: referred to the merged chain, analysis.identify.hidden, they are wider than the
+    # optimum's own likelihood bound)
     for key in ("masses[3]", "stiffnesses[2]", "ground_dampings[3]"):
         lo, hi = fit.intervals[key]
-        assert lo < fit.value(key) < hi and hi / lo < 1.01
+        assert lo < fit.value(key) < hi and hi / lo < 1.02
+        assert lo <= device_value(d, key) <= hi
         assert fit.value(key) == pytest.approx(device_value(d, key), rel=0.01)
     free = {k: v for k, v, f in zip(fit.keys, fit.intervals.values(), fit.fixed) if not f}
     with pytest.raises(ValidationError):

@@ -13,7 +13,9 @@ eq. (9) predicts their experimental 50 kN/m (section VI).  This package closes t
   complex log-response in log-parameters, automatic start from the measured resonances and
   antiresonances (Stieltjes / Lanczos inverse, :mod:`analysis.identify.start`), Jacobian
   covariance, 95 % intervals (Wald, or profile likelihood where the Wald interval is unreliable,
-  :mod:`analysis.identify.profile`), correlations and identifiability (:class:`ChainFit`);
+  :mod:`analysis.identify.profile`; referred to the chain without a handle when the data do not
+  show the handle mode, :mod:`analysis.identify.hidden`), correlations and identifiability
+  (:class:`ChainFit`);
 * robust designs over a parameter box (:func:`robust_max_stiffness` for eq. 9,
   :func:`robust_feasible_damping` for eq. 21, :func:`robust_critical_stiffness` for the exact
   sampled-data limit), each naming its binding device.
@@ -30,9 +32,11 @@ from analysis.identify.boxsearch import ParameterBox, SearchTrace, box_search, p
 from analysis.identify.csvio import load_measurement, read_frf, read_timeseries
 from analysis.identify.errors import MeasurementError, ParameterKeyError
 from analysis.identify.fit import fit_chain, order_selection
+from analysis.identify.hidden import HiddenHandle, handle_family, hidden_handle, merged_fit
 from analysis.identify.measurement import Measurement, make_measurement
 from analysis.identify.model import BOUNDARIES, QUANTITIES, continuous_response, response, sampled_response
 from analysis.identify.params import ChainParameters, device_value, device_with, parameter_keys
+from analysis.identify.problem import FitProblem
 from analysis.identify.profile import Profiler, profile_critical_value
 from analysis.identify.results import ChainFit, OrderSelection, Parameter
 from analysis.identify.robust import (
@@ -52,6 +56,8 @@ __all__ = [
     "QUANTITIES",
     "ChainFit",
     "ChainParameters",
+    "FitProblem",
+    "HiddenHandle",
     "Measurement",
     "MeasurementError",
     "OrderSelection",
@@ -70,8 +76,11 @@ __all__ = [
     "device_with",
     "estimate_frf",
     "fit_chain",
+    "handle_family",
+    "hidden_handle",
     "load_measurement",
     "make_measurement",
+    "merged_fit",
     "order_selection",
     "parameter_box",
     "parameter_keys",

@@ -23,15 +23,19 @@ Method
    are reliable, profile-likelihood intervals (:mod:`analysis.identify.profile`) where not,
    unbounded ``(0, inf)`` for parameters that are not identifiable (``intervals="auto"``);
    widened to other optima that fit equally well (likelihood-ratio bound), identifiability
-   with suggestions.
+   with suggestions.  A handle mode the data do not show (BIC against the chain with mass 0
+   merged into mass 1) refers the intervals to that chain, makes the handle's unknowns
+   unbounded and widens the rest to the family of handles that fit as well; the best member of
+   that family becomes the optimum when it fits better (:mod:`analysis.identify.hidden`).
 
 Identifiability of the HBFD
 ---------------------------
 At the actuator the HBFD's handle mode has its pole (842.45 rad/s) and zero (842.72 rad/s) 0.03 %
 apart: noise-free data determine the handle side (every parameter to 1e-6 from the automatic
 start), but at 1 % noise the actuator FRF alone cannot place it -- several basins fit equally
-well and the handle-side parameters are reported as not identifiable.  A ``gauge`` (or
-``handle``) measurement with the handle free shows the mode and fixes it.
+well and the handle-side parameters are reported as not identifiable, the others with
+intervals that contain every handle the data allow.  A ``gauge`` (or ``handle``) measurement
+with the handle free shows the mode and fixes it.
 4. Model order: :func:`order_selection` fits ``n = 1..N`` and reports AIC and BIC.
 """
 

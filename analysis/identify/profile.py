@@ -33,7 +33,9 @@ shrank to nothing (:mod:`analysis.identify.degenerate`) passes the restarts that
 its share, so the walk can leave the plateau.  A side that stays below the
 target up to the physical range of the parameter, or a factor 1000 from the estimate, is
 unbounded: the interval is reported as ``0`` or ``inf`` on that side (the data do not bound the
-parameter).  A profile point that fits better than the optimum is recorded: the fit was not the
+parameter).  ``reference`` replaces the optimum's RSS as the level the ratio is taken from
+when the optimum's gain over a simpler chain is not evidence (:mod:`analysis.identify.hidden`);
+``s^2`` stays the optimum's.  A profile point that fits better than the optimum is recorded: the fit was not the
 global optimum, and the caller says so.
 """
 
@@ -79,10 +81,13 @@ class Profiler:
     (module doc); ``cov`` is the Wald covariance (for the first step and the predictor)."""
 
     def __init__(self, problem: FitProblem, theta: np.ndarray, rss: float, cov: np.ndarray,
-                 extra_starts: tuple[np.ndarray, ...] = ()) -> None:
+                 extra_starts: tuple[np.ndarray, ...] = (), reference: float | None = None) -> None:
         self.problem = problem
         self.theta = np.asarray(theta, float)
         self.rss = float(rss)
+        #: RSS the likelihood ratio is referred to: the optimum's, or a higher one when the
+        #: optimum's gain over it is not evidence (:mod:`analysis.identify.hidden`).
+        self.reference = max(self.rss, float(reference)) if reference is not None else self.rss
         p = self.theta.size
         dof = max(problem.n_residuals - p, 1)
         self.s2 = max(self.rss / dof, 1e-300)
@@ -114,7 +119,7 @@ class Profiler:
         return rss, sol.x
 
     def tau(self, rss: float) -> float:
-        return math.sqrt(max(rss - self.rss, 0.0) / self.s2)
+        return math.sqrt(max(rss - self.reference, 0.0) / self.s2)
 
     def _slope(self, j: int) -> np.ndarray:
         c = self.cov

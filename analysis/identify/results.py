@@ -53,7 +53,9 @@ class ChainFit:
         How each interval was found: ``"wald"`` (``exp(theta +- 1.96 sigma)`` from ``J^T J``),
         ``"profile"`` (profile likelihood, :mod:`analysis.identify.profile`), ``"profile
         (unbounded)"`` (the data do not bound it on one side: ``0`` or ``inf``), ``"fixed"``;
-        ``" + other optima"`` when widened to equally good optima of the multi-start.
+        ``" + other optima"`` when widened to equally good optima of the multi-start,
+        ``" + handle family"`` when widened to the handles that fit as well as the merged chain
+        (:mod:`analysis.identify.hidden`).
     """
 
     device: Device

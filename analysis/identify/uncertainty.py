@@ -12,7 +12,9 @@ delta method ``value * sigma``.
 Identifiability: singular values below ``1e-8`` of the largest span directions the data do not
 constrain; parameters with a component above 0.1 in such a direction, and parameters whose
 interval spans more than a factor 10 (``sigma > ln(10)/3.92``), are reported as not identifiable,
-with the measurement that would constrain them (:func:`suggestion`).
+with the measurement that would constrain them (:func:`suggestion`).  A handle mode that the
+data do not show changes the reference of the likelihood-ratio intervals
+(:mod:`analysis.identify.hidden`).
 """
 
 from __future__ import annotations
@@ -24,8 +26,9 @@ import numpy as np
 from scipy import optimize
 
 from analysis.chain.device import Device
-from analysis.identify.params import ChainParameters, parse_key
 from analysis.identify.degenerate import SHARES, degenerate_masses, restart
+from analysis.identify.hidden import HANDLE_KEYS, HiddenHandle, adopt_best, hidden_handle
+from analysis.identify.params import ChainParameters, parse_key
 from analysis.identify.problem import FitProblem
 from analysis.identify.profile import Profiler, curvature_ratios, profile_intervals
 from analysis.identify.results import ChainFit
@@ -38,10 +41,13 @@ _WIDE = math.log(10.0) / (2 * Z95)
 _CHI2_1 = 3.841458820694124  # 95 % quantile of chi-square with 1 degree of freedom
 
 
-def suggestion(key: str, n: int, measured: set[tuple[str, str]]) -> str:
-    """What measurement would constrain ``key`` better, given the (quantity, boundary) pairs used."""
+def suggestion(key: str, n: int, measured: set[tuple[str, str]], handle_hidden: bool = False) -> str:
+    """What measurement would constrain ``key`` better, given the (quantity, boundary) pairs used;
+    ``handle_hidden``: the data do not show the handle mode (:mod:`analysis.identify.hidden`), so
+    whatever it leaves loose is fixed by showing it."""
     name, i = parse_key(key, n)
     handle_side = (name == "masses" and i < n - 1) or (name in ("stiffnesses", "dampings") and i == 0)
+    handle_side = handle_side or (handle_hidden and name != "ground_dampings")
     if handle_side and ("actuator", "clamped") not in measured:
         return "add a clamped-handle test (actuator quantity, boundary 'clamped')"
     if handle_side and not ({("handle", "free"), ("gauge", "free")} & measured):
@@ -92,23 +98,26 @@ def _table(keys: Sequence[str], problem: FitProblem, theta: np.ndarray, cov: np.
 
 
 def widen_to_equivalent_optima(keys: Sequence[str], problem: FitProblem, lo: np.ndarray, hi: np.ndarray,
-                               rss: float, p: int,
-                               alternatives: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray, set[str]]:
-    """Widen the intervals to every alternative optimum that the data cannot tell from the best.
+                               rss: float, p: int, alternatives: Sequence[np.ndarray],
+                               reference: float | None = None) -> tuple[np.ndarray, np.ndarray, set[str]]:
+    """Widen the intervals to every alternative chain that the data cannot tell from the best.
 
-    An optimum ``theta_i`` with ``RSS_i - RSS <= chi2_1(0.95) s^2`` (3.84 s^2) lies inside every
+    A chain ``theta_i`` with ``RSS_i - RSS <= chi2_1(0.95) s^2`` (3.84 s^2) lies inside every
     parameter's 95 % profile-likelihood interval (the profile at ``theta_i``'s value is at most
-    ``RSS_i``), so including it is a justified lower bound on that interval.  This catches what
-    the local (Jacobian) intervals cannot: several basins fitting equally well, as when a mode
-    is nearly invisible in the measured quantity.  Returns (lo, hi, keys whose interval moved).
+    ``RSS_i``), so including it is a justified lower bound on that interval; it need not be an
+    optimum.  This catches what the local (Jacobian) intervals cannot: several basins fitting
+    equally well, as when a mode is nearly invisible in the measured quantity.  ``reference``
+    (default ``rss``) is the RSS the ratio is taken from (:mod:`analysis.identify.hidden`).
+    Returns (lo, hi, keys whose interval moved).
     """
     R = problem.n_residuals
     s2 = rss / max(R - p, 1)
+    level = max(rss, reference if reference is not None else rss) + _CHI2_1 * s2
     lo, hi = lo.copy(), hi.copy()
     moved: set[str] = set()
     for alt in alternatives:
         r = problem.residual(alt)
-        if float(r @ r) - rss > _CHI2_1 * s2:
+        if float(r @ r) > level:
             continue
         chain = problem.chains(alt)
         for j, key in enumerate(keys):
@@ -160,10 +169,11 @@ def profile_selection(mode: str, keys: Sequence[str], wide: np.ndarray, q: np.nd
 
 
 def _with_profiles(problem: FitProblem, theta: np.ndarray, rss: float, cov: np.ndarray, keys: Sequence[str],
-                   lo: np.ndarray, hi: np.ndarray, methods: list[str], chosen: list[int]) -> Profiler:
+                   lo: np.ndarray, hi: np.ndarray, methods: list[str], chosen: list[int],
+                   reference: float | None) -> Profiler:
     """Replace the intervals of the free parameters ``chosen`` by their profile intervals."""
     extra = tuple(restart(problem, theta, i, f) for i in degenerate_masses(problem, theta) for f in SHARES)
-    prof = Profiler(problem, theta, rss, cov, extra)
+    prof = Profiler(problem, theta, rss, cov, extra, reference)
     for j, (low, high, bounded) in profile_intervals(prof, chosen).items():
         at = list(keys).index(problem.keys[j])
         lo[at], hi[at] = low, high
@@ -173,26 +183,45 @@ def _with_profiles(problem: FitProblem, theta: np.ndarray, rss: float, cov: np.n
 
 def _choose_intervals(problem: FitProblem, theta: np.ndarray, rss: float, cov: np.ndarray, corr: np.ndarray,
                       keys: Sequence[str], s: np.ndarray, fx: np.ndarray, lo: np.ndarray, hi: np.ndarray,
-                      intervals: str, notes: Sequence[str]) -> tuple[list[str], list[str]]:
+                      intervals: str, notes: Sequence[str],
+                      hidden: HiddenHandle | None) -> tuple[list[str], list[str]]:
     """Apply :func:`profile_selection` to ``lo``/``hi`` in place; the method of each interval
-    and the notes (plus one when the profile met a better fit than the optimum)."""
+    and the notes (plus one when the profile met a better fit than the optimum).  An undetected
+    handle mode (``hidden``, :mod:`analysis.identify.hidden`) makes the handle's unknowns
+    unbounded and refers every other (profiled) interval to the merged chain's RSS."""
     p = theta.size
     methods = ["fixed" if f else "wald" for f in fx]
     free_at = [list(keys).index(k) for k in problem.keys]
     wide = np.array([not (s[a] <= _WIDE) for a in free_at], bool)
-    exact = rss <= _ROUNDOFF**2 * max(problem.n_residuals, 1)  # noise-free: RSS differences are round-off
-    q = curvature_ratios(problem, theta, rss, cov) if intervals == "auto" and not exact else np.ones((p, 2))
+    q = curvature_ratios(problem, theta, rss, cov) if intervals == "auto" and not _exact(problem, rss) else np.ones((p, 2))
     chosen, loose = profile_selection(intervals, problem.keys, wide, q, corr)
+    reference = None
+    if hidden is not None and not hidden.detected:
+        reference = hidden.rss_merged
+        loose = sorted(set(loose) | {j for j, k in enumerate(problem.keys) if k in HANDLE_KEYS})
+        chosen = [j for j in range(p) if j not in loose]
     for j in loose:
         at = free_at[j]
         lo[at], hi[at], methods[at] = 0.0, math.inf, "unbounded (not identifiable)"
     notes = list(notes)
     if chosen:
-        prof = _with_profiles(problem, theta, rss, cov, keys, lo, hi, methods, chosen)
+        prof = _with_profiles(problem, theta, rss, cov, keys, lo, hi, methods, chosen, reference)
         if prof.best_rss < rss - 0.01 * prof.s2:
             notes.append(f"a chain that fits better than the optimum was met on the profile "
                          f"(RSS lower by {(rss - prof.best_rss) / prof.s2:.3g} s^2): the data leave the fit ambiguous")
     return methods, notes
+
+
+def _exact(problem: FitProblem, rss: float) -> bool:
+    """Noise-free data: the RMS residual is round-off, and RSS differences mean nothing."""
+    return rss <= _ROUNDOFF**2 * max(problem.n_residuals, 1)
+
+
+def _hidden_note(hidden: HiddenHandle, accepted: int) -> str:
+    return (f"the handle mode is not detected in these measurements: the chain with mass 0 merged into "
+            f"mass 1 fits within the BIC margin (RSS higher by {hidden.statistic:.3g} s^2, at most "
+            f"3 ln R = {hidden.critical:.3g}); the intervals are referred to that chain, and contain the "
+            f"{accepted} of {len(hidden.family)} scanned handle configurations that fit as well")
 
 
 def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Sequence[str],
@@ -206,24 +235,35 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
     r = problem.residual(theta)
     rss = float(r @ r)
     R, p = r.size, theta.size
+    hidden = hidden_handle(problem, theta, rss) if intervals != "wald" and p and not _exact(problem, rss) else None
+    theta, rss, hidden = adopt_best(problem, theta, rss, hidden)
     J = problem.jacobian(theta, central=True) if p else np.zeros((R, 0))
     cov, null = covariance(J, rss)
     v, s, se, lo, hi, fx = _table(keys, problem, theta, cov, null, fixed)
     sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
     with np.errstate(divide="ignore", invalid="ignore"):
         corr = cov / np.outer(sd, sd)
-    methods, notes = _choose_intervals(problem, theta, rss, cov, corr, keys, s, fx, lo, hi, intervals, notes)
+    methods, notes = _choose_intervals(problem, theta, rss, cov, corr, keys, s, fx, lo, hi, intervals, notes,
+                                       hidden)
     chain: ChainParameters = problem.chains(theta)
     n = chain.n
     device = chain.device(0, template)
     lo, hi, moved = widen_to_equivalent_optima(keys, problem, lo, hi, rss, p, alternatives)
     for k in moved:
         methods[list(keys).index(k)] += " + other optima"
+    if hidden is not None and not hidden.detected:
+        lo, hi, family = widen_to_equivalent_optima(keys, problem, lo, hi, rss, p, hidden.family,
+                                                    reference=hidden.rss_merged)
+        for k in family:
+            methods[list(keys).index(k)] += " + handle family"
+        accepted = int(np.count_nonzero(hidden.family_rss <= hidden.rss_merged + _CHI2_1 * rss / max(R - p, 1)))
+        notes = [*notes, _hidden_note(hidden, accepted)]
     bad = tuple(k for k, sk, f, m, a, b in zip(keys, s, fx, methods, lo, hi) if not f and (
         (not (sk <= _WIDE) and not m.startswith("profile")) or k in moved or "unbounded" in m
         or not b <= 10.0 * a))
     measured = {(m.quantity, m.boundary) for m in problem.measurements}
-    sugg = {k: suggestion(k, n, measured) for k in bad}
+    undetected = hidden is not None and not hidden.detected
+    sugg = {k: suggestion(k, n, measured, undetected) for k in bad}
     if moved:
         notes = [*notes, f"other local optima fit the data as well (within the 95 % likelihood-ratio bound); "
                  f"the intervals of {', '.join(sorted(moved))} are widened to include them"]
