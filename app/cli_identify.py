@@ -91,9 +91,7 @@ def _report(result, rows: list[dict], out: str, as_json: bool) -> None:
         for n, a, b, r in zip(orders.n, orders.aic, orders.bic, orders.residual):
             mark = "  <- lowest BIC" if orders.best_bic == n else ""
             print(f"{int(n):2d}   {a:<13.6g}  {b:<13.6g}  {r:<10.4g}{mark}")
-    for key in fit.non_identifiable:
-        print(f"note: {key} is not identifiable from these measurements: {fit.suggestions.get(key, '')}")
-    for w in fit.warnings:
+    for w in fit.warnings:  # the non-identifiable keys, grouped by what would fix them, among them
         print(f"warning: {w}")
     print(f"wrote {out}")
 

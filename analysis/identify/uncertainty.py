@@ -224,6 +224,41 @@ def _hidden_note(hidden: HiddenHandle, accepted: int) -> str:
             f"{accepted} of {len(hidden.family)} scanned handle configurations that fit as well")
 
 
+def _grouped(bad: Sequence[str], sugg: Mapping[str, str], unbounded: set[str]) -> list[str]:
+    """One warning per suggestion, naming every key it fixes (and which have unbounded intervals)."""
+    out = []
+    for text in dict.fromkeys(sugg[k] for k in bad):
+        ks = [k for k in bad if sugg[k] == text]
+        loose = [k for k in ks if k in unbounded]
+        verb = "is" if len(ks) == 1 else "are"
+        side = ""
+        if loose:
+            side = (" (its 95 % interval is unbounded)" if ks == loose and len(ks) == 1 else
+                    " (95 % interval unbounded: " + ", ".join(loose) + ")")
+        out.append(f"{', '.join(ks)} {verb} not identifiable from these measurements{side}: {text}")
+    return out
+
+
+def _widen(problem: FitProblem, keys: Sequence[str], lo: np.ndarray, hi: np.ndarray, rss: float,
+           alternatives: Sequence[np.ndarray], hidden: HiddenHandle | None, methods: list[str],
+           notes: list[str]) -> tuple[np.ndarray, np.ndarray, set[str], list[str]]:
+    """Widen to the multi-start's other optima, and to the handle family of an undetected handle
+    mode (methods updated in place); the keys moved by the optima and the notes."""
+    p = len(problem.keys)
+    lo, hi, moved = widen_to_equivalent_optima(keys, problem, lo, hi, rss, p, alternatives)
+    for k in moved:
+        methods[list(keys).index(k)] += " + other optima"
+    if hidden is not None and not hidden.detected:
+        lo, hi, family = widen_to_equivalent_optima(keys, problem, lo, hi, rss, p, hidden.family,
+                                                    reference=hidden.rss_merged)
+        for k in family:
+            methods[list(keys).index(k)] += " + handle family"
+        s2 = rss / max(problem.n_residuals - p, 1)
+        accepted = int(np.count_nonzero(hidden.family_rss <= max(hidden.rss_merged, rss) + _CHI2_1 * s2))
+        notes = [*notes, _hidden_note(hidden, accepted)]
+    return lo, hi, moved, list(notes)
+
+
 def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Sequence[str],
               fixed: Mapping[str, float], template: Device, n_starts: int,
               notes: Sequence[str] = (), alternatives: Sequence[np.ndarray] = (),
@@ -248,16 +283,7 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
     chain: ChainParameters = problem.chains(theta)
     n = chain.n
     device = chain.device(0, template)
-    lo, hi, moved = widen_to_equivalent_optima(keys, problem, lo, hi, rss, p, alternatives)
-    for k in moved:
-        methods[list(keys).index(k)] += " + other optima"
-    if hidden is not None and not hidden.detected:
-        lo, hi, family = widen_to_equivalent_optima(keys, problem, lo, hi, rss, p, hidden.family,
-                                                    reference=hidden.rss_merged)
-        for k in family:
-            methods[list(keys).index(k)] += " + handle family"
-        accepted = int(np.count_nonzero(hidden.family_rss <= hidden.rss_merged + _CHI2_1 * rss / max(R - p, 1)))
-        notes = [*notes, _hidden_note(hidden, accepted)]
+    lo, hi, moved, notes = _widen(problem, keys, lo, hi, rss, alternatives, hidden, methods, notes)
     bad = tuple(k for k, sk, f, m, a, b in zip(keys, s, fx, methods, lo, hi) if not f and (
         (not (sk <= _WIDE) and not m.startswith("profile")) or k in moved or "unbounded" in m
         or not b <= 10.0 * a))
@@ -268,9 +294,7 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
         notes = [*notes, f"other local optima fit the data as well (within the 95 % likelihood-ratio bound); "
                  f"the intervals of {', '.join(sorted(moved))} are widened to include them"]
     unbounded = {k for k, m in zip(keys, methods) if "unbounded" in m}
-    warnings = list(notes) + [f"{k} is not identifiable from these measurements"
-                              f"{' (its 95 % interval is unbounded)' if k in unbounded else ''}: {sugg[k]}"
-                              for k in bad]
+    warnings = list(notes) + _grouped(bad, sugg, unbounded)
     converged = sol is None or sol.status > 0
     if not converged:
         warnings.append(f"the optimizer stopped before convergence: {sol.message}")

@@ -152,8 +152,7 @@ class IdentifyTab(AnalysisTab):
         notes = [f"Residual {format_number(fit.residual, 3)} (RMS of the weighted log-response), "
                  f"AIC {format_number(fit.aic)}, BIC {format_number(fit.bic)}"
                  + ("" if fit.converged else " — did NOT converge")]
-        notes += [f"{k} is not identifiable: {fit.suggestions.get(k, '')}" for k in fit.non_identifiable]
-        notes += list(fit.warnings)
+        notes += list(fit.warnings)  # the non-identifiable keys, grouped by what would fix them, among them
         self.summary.setText("\n".join(notes))
         self.panel.use_button.setEnabled(True)
         self.fitted.emit()
