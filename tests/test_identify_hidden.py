@@ -12,6 +12,8 @@
   5 % of the true device's.
 * With the gauge added the handle mode is detected and nothing changes: Wald intervals, no
   family, the statistic far above the criterion.
+* Cancel: the fit asks ``cancelled()`` before every model evaluation and stops at the first True
+  (the 20-40 s of an actuator-alone fit used to run to the end after a Cancel).
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ import pytest
 from analysis import Device, ImpedanceDisplay
 from analysis.identify import (
     ChainParameters,
+    FitCancelled,
     FitProblem,
     device_response,
     device_value,
@@ -32,6 +35,7 @@ from analysis.identify import (
     make_measurement,
     merged_fit,
 )
+from analysis.study import identify_chain
 
 from tests.hbfd_fixtures import make_hbfd
 
@@ -136,3 +140,29 @@ def test_the_test_does_not_apply_when_a_handle_unknown_is_fixed():
     assert hidden_handle(problem, theta, fit.rss) is None
     one = fit_chain(ms, 1, intervals="wald")
     assert hidden_handle(*_problem(one, ms), one.rss) is None
+
+
+def test_a_cancelled_fit_stops_at_the_next_model_evaluation():
+    ms = _measurements(make_hbfd(), 2007)
+    calls = {"n": 0, "after": 0}
+
+    def cancelled() -> bool:
+        calls["n"] += 1
+        if calls["n"] > 40:
+            calls["after"] += 1
+            return True
+        return False
+
+    with pytest.raises(FitCancelled):
+        fit_chain(ms, 4, ground_dampings=(3,), cancelled=cancelled)
+    assert calls["after"] == 1  # no evaluation ran after the first True
+    # the study layer (what the Identify view runs on the worker) answers None, at any stage
+    for stop_after in (5, 400, 4000):
+        count = {"n": 0}
+
+        def late(limit: int = stop_after) -> bool:
+            count["n"] += 1
+            return count["n"] > limit
+
+        assert identify_chain(ms, 4, ground_dampings=(3,), max_masses=4, cancelled=late) is None
+        assert count["n"] == stop_after + 1

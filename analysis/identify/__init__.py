@@ -30,7 +30,7 @@ import numpy as np
 from analysis.chain.device import Device
 from analysis.identify.boxsearch import ParameterBox, SearchTrace, box_search, parameter_box
 from analysis.identify.csvio import load_measurement, read_frf, read_timeseries
-from analysis.identify.errors import MeasurementError, ParameterKeyError
+from analysis.identify.errors import FitCancelled, MeasurementError, ParameterKeyError
 from analysis.identify.fit import fit_chain, order_selection
 from analysis.identify.hidden import HiddenHandle, handle_family, hidden_handle, merged_fit
 from analysis.identify.measurement import Measurement, make_measurement
@@ -56,6 +56,7 @@ __all__ = [
     "QUANTITIES",
     "ChainFit",
     "ChainParameters",
+    "FitCancelled",
     "FitProblem",
     "HiddenHandle",
     "Measurement",

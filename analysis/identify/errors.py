@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import os
 
-__all__ = ["MeasurementError", "ParameterKeyError"]
+__all__ = ["FitCancelled", "MeasurementError", "ParameterKeyError"]
 
 
 class MeasurementError(ValueError):
@@ -56,3 +56,8 @@ class ParameterKeyError(ValueError):
         self.key = key
         self.expected = expected
         super().__init__(f"parameter key {key!r} is invalid: expected {expected}")
+
+
+class FitCancelled(Exception):
+    """A fit stopped because its ``cancelled()`` callback returned True (checked before every
+    model evaluation, so a worker's Cancel takes effect within one evaluation)."""

@@ -41,7 +41,7 @@ with the handle free shows the mode and fixes it.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -83,7 +83,8 @@ def _check(measurements: Sequence[Measurement], n_masses: int, ground: Sequence[
 def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_dampings: Sequence[int] | None = None,
               fixed: Mapping[str, float] | None = None, *, sensor_element: int = 0,
               sample_time: float | None = None, band_min: float = 1.0, starts: int = 4, seed: int = 0,
-              max_nfev: int = 200, intervals: str = "auto") -> ChainFit:
+              max_nfev: int = 200, intervals: str = "auto",
+              cancelled: Callable[[], bool] | None = None) -> ChainFit:
     """Fit an ``n_masses`` chain to ``measurements`` together (module doc).
 
     ``ground_dampings`` selects the masses with a damper to ground (default ``(n - 1,)``, the
@@ -93,7 +94,9 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
     tried when the data do not show every resonance.  ``intervals``: ``"auto"`` (Wald intervals,
     replaced by profile-likelihood ones where the Wald interval is unreliable), ``"wald"`` (the
     Jacobian only, fastest) or ``"profile"`` (every free parameter profiled); see
-    :func:`analysis.identify.uncertainty.profile_selection`.
+    :func:`analysis.identify.uncertainty.profile_selection`.  ``cancelled()`` is asked before
+    every model evaluation; once it returns True the fit raises
+    :class:`~analysis.identify.errors.FitCancelled`.
     """
     fixed = dict(fixed or {})
     ground = tuple(sorted(set((n_masses - 1,) if ground_dampings is None else (int(g) for g in ground_dampings))))
@@ -103,11 +106,11 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
         if key not in keys:
             keys.append(key)  # a fixed ground damping not selected for fitting
     free = [k for k in keys if k not in fixed]
-    hints = _hidden_hints(measurements, n_masses, seed)
+    hints = _hidden_hints(measurements, n_masses, seed, cancelled)
     rows = start_chains(measurements, n_masses, ground, fixed, count=starts, seed=seed, hints=hints)
     all_keys = parameter_keys(n_masses, None)
     base = ChainParameters.from_rows(all_keys, _values(rows, all_keys)[:1], rows)
-    problem = FitProblem(tuple(measurements), tuple(free), base, int(sensor_element))
+    problem = FitProblem(tuple(measurements), tuple(free), base, int(sensor_element), cancelled)
     thetas = np.log(np.maximum(_values(rows, free), 1e-300))
     if free and set(fixed) & set(parameter_keys(n_masses, ground)):
         released = _released_starts(problem, ground, fixed, rows.count, seed, hints, max_nfev)
@@ -157,7 +160,7 @@ def _released_starts(problem: FitProblem, ground: tuple[int, ...], fixed: Mappin
     rows = start_chains(problem.measurements, n, ground, held, count=count, seed=seed, hints=hints)
     all_keys = parameter_keys(n, None)
     base = ChainParameters.from_rows(all_keys, _values(rows, all_keys)[:1], rows)
-    released = FitProblem(problem.measurements, tuple(own), base, problem.sensor_element)
+    released = problem.sub(tuple(own), base)
     sol, _ = _multistart(released, np.log(np.maximum(_values(rows, own), 1e-300)), max_nfev)
     chain = released.chains(sol.x)
     chain = ChainParameters(*(np.concatenate([a, a]) for a in
@@ -196,7 +199,8 @@ def _rescaled(chain: ChainParameters, row: int, fixed: Mapping[str, float]) -> N
         chain.dampings[row, : top + 1] *= r
 
 
-def _hidden_hints(measurements: Sequence[Measurement], n: int, seed: int) -> np.ndarray | None:
+def _hidden_hints(measurements: Sequence[Measurement], n: int, seed: int,
+                  cancelled: Callable[[], bool] | None = None) -> np.ndarray | None:
     """Frequencies of resonance pairs an ``n``-mass chain needs but the driving point does not show.
 
     First the peaks of the other measurements away from the visible resonances
@@ -217,7 +221,7 @@ def _hidden_hints(measurements: Sequence[Measurement], n: int, seed: int) -> np.
         return np.array(picked)
     rows = start_chains(dp[:1], k + 1, (k,), {}, count=1, seed=seed)
     keys = parameter_keys(k + 1, (k,))
-    problem = FitProblem((dp[0],), tuple(keys), rows, 0)
+    problem = FitProblem((dp[0],), tuple(keys), rows, 0, cancelled)
     th = solve(problem, np.log(_values(rows, keys)[0]), _SHORT_RUN).x
     r = problem.residual(th)
     F = dp[0].size

@@ -100,7 +100,7 @@ def _solve_held(problem: FitProblem, theta: np.ndarray, held: tuple[str, ...], n
     keys = list(problem.keys)
     rest = [k for k in keys if k not in held]
     base = ChainParameters.from_rows(keys, np.exp(theta)[None, :], problem.base)
-    sub = FitProblem(problem.measurements, tuple(rest), base, problem.sensor_element)
+    sub = problem.sub(tuple(rest), base)
     idx = [keys.index(k) for k in rest]
     sol = solve(sub, theta[idx], nfev, tol=1e-10)
     out = np.array(theta, float)

@@ -21,11 +21,13 @@ of ``p + 1`` chains rather than ``p + 1`` Python-level ones.  :meth:`FitProblem.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from scipy import optimize
 
+from analysis.identify.errors import FitCancelled
 from analysis.identify.measurement import Measurement
 from analysis.identify.model import response
 from analysis.identify.params import ChainParameters, physical_range
@@ -43,13 +45,20 @@ class FitProblem:
     """Measurements, the free keys and the fixed remainder of the chain.
 
     ``base`` holds every parameter (free ones at any value, fixed ones at theirs);
-    ``keys`` are the free parameters, ``theta = log(values of keys)``.
+    ``keys`` are the free parameters, ``theta = log(values of keys)``.  ``cancelled`` (optional)
+    is asked before every model evaluation; when it returns True the evaluation raises
+    :class:`~analysis.identify.errors.FitCancelled`.
     """
 
     measurements: tuple[Measurement, ...]
     keys: tuple[str, ...]
     base: ChainParameters
     sensor_element: int = 0
+    cancelled: Callable[[], bool] | None = None
+
+    def sub(self, keys: tuple[str, ...], base: ChainParameters) -> FitProblem:
+        """The same measurements, sensor and cancel hook with other free ``keys`` and ``base``."""
+        return FitProblem(self.measurements, tuple(keys), base, self.sensor_element, self.cancelled)
 
     @property
     def n_residuals(self) -> int:
@@ -66,6 +75,8 @@ class FitProblem:
 
     def residual_rows(self, thetas: np.ndarray) -> np.ndarray:
         """Real residual vectors (P, R) of ``P`` parameter rows (module doc)."""
+        if self.cancelled is not None and self.cancelled():
+            raise FitCancelled("the fit was cancelled")
         thetas = np.atleast_2d(np.asarray(thetas, float))
         bad = ~np.all(np.isfinite(thetas) & (np.abs(thetas) < _THETA_MAX), axis=1)
         thetas = np.where(bad[:, None], 0.0, thetas)  # evaluated harmlessly, then penalized

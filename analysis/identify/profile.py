@@ -104,8 +104,7 @@ class Profiler:
         full = self.theta.copy()
         full[j] = tj
         base = ChainParameters.from_rows(keys, np.exp(full)[None, :], self.problem.base)
-        sub = FitProblem(self.problem.measurements, tuple(keys[:j] + keys[j + 1:]), base,
-                         self.problem.sensor_element)
+        sub = self.problem.sub(tuple(keys[:j] + keys[j + 1:]), base)
         self.solves += 1
         if not keys[:j] + keys[j + 1:]:
             r = sub.residual(np.zeros(0))

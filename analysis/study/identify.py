@@ -26,6 +26,7 @@ import numpy as np
 
 from analysis.identify import (
     ChainFit,
+    FitCancelled,
     Measurement,
     OrderSelection,
     RobustDamping,
@@ -99,7 +100,8 @@ def identify_chain(measurements: Sequence[Measurement], n_masses: int, fixed: Ma
              ground_dampings: Sequence[int] | None = None, *, max_masses: int | None = None,
              progress: Progress = None, cancelled: Cancelled = None, **fit_kwargs) -> IdentifyResult | None:
     """Fit ``n_masses`` (raises ValueError for unusable input) and, when ``max_masses`` is given,
-    the orders ``1..max_masses`` for the order table; ``None`` when cancelled between fits.
+    the orders ``1..max_masses`` for the order table; ``None`` when cancelled (``cancelled()`` is
+    asked before every model evaluation of every fit, so Cancel stops a long fit at once).
 
     Fixed keys outside a smaller chain make that order an error row (``nan``), as in
     :func:`analysis.identify.order_selection`.
@@ -107,15 +109,22 @@ def identify_chain(measurements: Sequence[Measurement], n_masses: int, fixed: Ma
     fixed = dict(fixed or {})
     orders = list(range(1, int(max_masses) + 1)) if max_masses else []
     total = 1 + len([n for n in orders if n != n_masses])
-    fit = fit_chain(measurements, int(n_masses), ground_dampings, fixed, **fit_kwargs)
+    fit_kwargs = {**fit_kwargs, "cancelled": cancelled}
+    try:
+        fit = fit_chain(measurements, int(n_masses), ground_dampings, fixed, **fit_kwargs)
+    except FitCancelled:
+        return None
     if progress:
         progress(1, total)
     rows: list[tuple[ChainFit | None, str | None]] = []
     for n in orders:
         if cancelled and cancelled():
             return None
-        rows.append((fit, None) if n == n_masses else _fit_or_error(measurements, n, fixed, ground_dampings,
-                                                                     fit_kwargs))
+        try:
+            rows.append((fit, None) if n == n_masses else _fit_or_error(measurements, n, fixed, ground_dampings,
+                                                                         fit_kwargs))
+        except FitCancelled:
+            return None
         if progress and n != n_masses:
             progress(1 + len(rows), total)
     table = _order_table(orders, rows) if orders else None

@@ -16,10 +16,14 @@ from app.core.nodes_identify import FIT_NODE, ROBUST_NODE
 from app.tabs.identify_tab import IdentifyTab
 
 
-def write_frf(path: Path, device, quantity: str = "actuator", boundary: str = "free", points: int = 400) -> Path:
+def write_frf(path: Path, device, quantity: str = "actuator", boundary: str = "free", points: int = 400,
+              noise: float = 0.0) -> Path:
     T = device.sample_time
     w = np.logspace(0, np.log10(0.95 * np.pi / T), points)
     h = device_response(device, w, quantity, boundary, T, 0)
+    if noise:
+        rng = np.random.default_rng(2005)
+        h = h * (1 + noise * (rng.normal(size=w.size) + 1j * rng.normal(size=w.size)) / np.sqrt(2))
     coh = np.clip(1 - 0.02 * np.log10(w), 0, 1)
     rows = [f"{float(a)!r},{float(b.real)!r},{float(b.imag)!r},{float(c)!r}" for a, b, c in zip(w, h, coh)]
     path.write_text("frequency_rad_s,real,imag,coherence\n" + "\n".join(rows) + "\n")
@@ -146,3 +150,20 @@ def test_robust_design_action_and_verdict_line(win, qtbot):
     win.undo_stack.undo()
     assert win.model.profile.identification is None
     qtbot.waitUntil(lambda: win.verdict.robust.isHidden(), timeout=5000)
+
+
+def test_cancel_stops_a_long_fit_at_once(win, qtbot, tmp_path):
+    # the actuator FRF alone at 1 % noise: the handle mode is not detected and the fit scans the
+    # handle family and profiles the rest (20-40 s); Cancel must stop it within one evaluation
+    tab = show(win, qtbot)
+    tab.panel.sampled.setChecked(True)
+    tab.load_files([write_frf(tmp_path / "noisy.csv", win.model.device, noise=0.01)])
+    with qtbot.waitSignal(win.graph.started, timeout=10000, check_params_cb=lambda name: name == FIT_NODE):
+        tab.panel.fit_button.click()
+    qtbot.wait(1500)  # well inside the fit (the multi-start alone takes longer)
+    assert tab.fit_progress.running and tab.fit_progress.cancel_button.isVisible()
+    with qtbot.waitSignal(win.graph.cancelled, timeout=5000, check_params_cb=lambda name: name == FIT_NODE):
+        tab.fit_progress.cancel_button.click()
+    assert "cancelled" in tab.fit_progress.label.text()
+    assert tab.result is None and not tab.panel.use_button.isEnabled()
+
