@@ -4,6 +4,7 @@ validation with JSON paths, and the robust designs computed from it (issue 14)."
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -66,7 +67,9 @@ def test_old_schemas_load_without_the_section():
     ({"intervals": {"masses[9]": [1, 2]}}, '$.identification.intervals["masses[9]"]', "index 9 is outside"),
     ({"intervals": {"mass[0]": [1, 2]}}, "$.identification.intervals.mass[0]", "unknown parameter key"),
     ({"intervals": {"masses[0]": [2, 1]}}, '$.identification.intervals["masses[0]"][1]', "got 1"),
-    ({"intervals": {"masses[0]": [0, 1]}}, '$.identification.intervals["masses[0]"][0]', "got 0"),
+    ({"intervals": {"masses[0]": [-1, 1]}}, '$.identification.intervals["masses[0]"][0]', "got -1"),
+    ({"intervals": {"masses[0]": ["inf", 1]}}, '$.identification.intervals["masses[0]"][0]', ">= 0 and finite"),
+    ({"intervals": {"masses[0]": [1, "big"]}}, '$.identification.intervals["masses[0]"][1]', 'or "inf"'),
     ({"intervals": {"masses[0]": [1]}}, '$.identification.intervals["masses[0]"]', "[low, high]"),
     ({"extra": 1}, "$.identification.extra", "unknown key"),
 ])
@@ -142,3 +145,27 @@ def test_robust_designs_admittance_interval_contains_current_damping_or_not():
     assert r.damping is not None and not r.impedance
     assert r.holds == (r.damping.low is not None and r.damping.low <= p.bc_adm <= r.damping.high)
     assert robust_designs(hbfd()) is None  # no section, no robust designs
+
+
+def test_unbounded_intervals_are_saved_as_zero_and_inf_and_refused_by_the_robust_designs(tmp_path):
+    # a fit of the actuator FRF alone reports the handle side as (0, inf); the profile keeps that
+    # (strict JSON has no Infinity: "inf", as elsewhere in the profile; saving used to fail), and the
+    # robust designs name the open intervals instead of designing over a box that is not one
+    section = IdentificationSection({"masses[0]": (0.0, math.inf), "stiffnesses[1]": (83.4e3, math.inf),
+                                     "ground_dampings[3]": (4.9, 5.1)}, (measurement_data(),))
+    p = hbfd().replace(identification=section)
+    assert profile_to_dict(p)["identification"]["intervals"]["masses[0]"] == [0.0, "inf"]
+    path = tmp_path / "unbounded.json"
+    save_profile(p, path)
+    assert "Infinity" not in path.read_text()
+    q = load_profile(path)
+    assert q.identification == section and q.identification.intervals["masses[0]"] == (0.0, math.inf)
+    rd = robust_designs(q)
+    assert rd.unbounded == ("masses[0]", "stiffnesses[1]") and not rd.holds
+    assert rd.stiffness is None and rd.damping is None
+    assert "do not bound masses[0], stiffnesses[1]" in rd.verdict()
+    # a damping may be bounded below by 0 (no damper): a box edge, searched (with b4 = 0 eq. 9 then
+    # admits no k_c at all), not an open interval
+    ok = robust_designs(q.replace(identification=IdentificationSection({"ground_dampings[3]": (0.0, 5.0)}, ())))
+    assert ok.unbounded == () and ok.stiffness is not None and ok.stiffness.kc is None
+

@@ -81,3 +81,22 @@ def test_export_plot_identify(app, seed_profile, tmp_path, capsys):
     save_profile(load_profile(resource_path("profiles", "hbfd.json")), plain)
     assert main(["export-plot", str(plain), "--plot", "identify", "-o", str(tmp_path / "x.png")]) == 1
     assert "$.identification" in capsys.readouterr().err
+
+
+def test_a_profile_with_unbounded_intervals_reports_why_there_is_no_robust_design(app, seed_profile, tmp_path):
+    from app.report.content import gather
+
+    p = load_profile(seed_profile)
+    sec = p.identification
+    p = p.replace(identification=IdentificationSection({**sec.intervals, "masses[0]": (0.0, float("inf"))},
+                                                       sec.measurements))
+    path = tmp_path / "open.json"
+    save_profile(p, path)
+    c = gather(load_profile(path), sampled=False)
+    robust = next(s for s in c.sections if s.title.startswith("Designs"))
+    assert robust.rows == () and "robust.kc" not in c.numbers
+    assert "no robust design: the measurements do not bound masses[0]" in robust.after[0]
+    ident = next(s for s in c.sections if s.title == "Identification")
+    assert any("unbounded" in r.value or "unbounded" in r.unit for r in ident.rows)
+    assert main(["report", str(path), "-o", str(tmp_path / "open.pdf")]) == 0
+

@@ -13,7 +13,9 @@ It keeps what a device model was identified from, so that the profile stays self
 
 * ``intervals`` -- 95 % (or user-typed) intervals on device parameters, keyed by the profile's
   JSON names with 0-based indices (``masses[i]``, ``stiffnesses[i]``, ``dampings[i]``,
-  ``ground_dampings[i]``), each ``[low, high]`` with ``0 < low <= high`` finite;
+  ``ground_dampings[i]``), each ``[low, high]`` with ``0 <= low <= high``; ``low = 0`` and
+  ``high = "inf"`` mark a side the data do not bound (a fit's unbounded interval, which the
+  robust designs refuse with the parameter named);
 * ``measurements`` -- the measured frequency responses, embedded: ``frequency`` in rad/s
   (> 0, strictly increasing), ``real``/``imag`` of the response, optional ``coherence`` in
   [0, 1]; ``quantity`` (``actuator`` | ``handle`` | ``gauge``), ``boundary`` (``free`` |
@@ -37,6 +39,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from analysis.checks import from_json_float, json_float
 from analysis.profiles.errors import ProfileError
 
 __all__ = [
@@ -100,7 +103,7 @@ class IdentificationSection:
 
     def to_dict(self) -> dict:
         """The JSON-ready section."""
-        return {"intervals": {k: [float(lo), float(hi)] for k, (lo, hi) in self.intervals.items()},
+        return {"intervals": {k: [float(lo), json_float(float(hi))] for k, (lo, hi) in self.intervals.items()},
                 "measurements": [m.to_dict() for m in self.measurements]}
 
 
@@ -130,13 +133,15 @@ def _interval(key: object, value: object, jp: str) -> tuple[str, tuple[float, fl
     where = f'{jp}["{key}"]'
     if not isinstance(value, list) or len(value) != 2:
         raise _fail(where, "a list [low, high]", value)
-    lo = _finite(value[0], f"{where}[0]", "a number > 0 and finite")
-    hi = _finite(value[1], f"{where}[1]", "a number >= low and finite")
-    if lo <= 0:
-        raise _fail(f"{where}[0]", "a number > 0 and finite", value[0])
-    if hi < lo:
-        raise _fail(f"{where}[1]", f"a number >= low ({lo:g}) and finite", value[1])
-    return key, (lo, hi)
+    lo = _finite(value[0], f"{where}[0]", "a number >= 0 and finite (0: not bounded below)")
+    if lo < 0:
+        raise _fail(f"{where}[0]", "a number >= 0 and finite (0: not bounded below)", value[0])
+    high = from_json_float(value[1])
+    if high != math.inf:
+        high = _finite(high, f"{where}[1]", 'a number >= low, or "inf" (not bounded above)')
+    if high < lo:
+        raise _fail(f"{where}[1]", f'a number >= low ({lo:g}), or "inf" (not bounded above)', value[1])
+    return key, (lo, float(high))
 
 
 def _choice(obj: Mapping, key: str, jp: str, options: Sequence[str], default: str) -> str:

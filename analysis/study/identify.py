@@ -196,7 +196,9 @@ class RobustDesigns:
 
     ``stiffness`` (impedance: eq. 9 at the current b_c) or ``damping`` (admittance: eq. 21 for
     the current m_c) is set; ``holds`` says whether the current coupling is stable for every
-    device in the box, ``coupling`` is the current (k_c or b_c) value checked.
+    device in the box, ``coupling`` is the current (k_c or b_c) value checked.  ``unbounded``
+    names the intervals the data do not bound (a fit's ``(0, inf)``): then there is no box to
+    design over, neither design is set and ``holds`` is False.
     """
 
     impedance: bool
@@ -205,9 +207,13 @@ class RobustDesigns:
     damping: RobustDamping | None
     coupling: float
     holds: bool
+    unbounded: tuple[str, ...] = ()
 
     def verdict(self) -> str:
         """One line for the verdict: whether the current coupling holds for the whole box."""
+        if self.unbounded:
+            return (f"no robust design: the measurements do not bound {', '.join(self.unbounded)} "
+                    f"(type intervals for them, or add the measurement the fit suggests)")
         n = len(self.intervals)
         box = f"the whole box ({n} parameter interval{'s' if n != 1 else ''})"
         if self.impedance:
@@ -230,6 +236,11 @@ def robust_designs(profile: Profile, *, seed: int = 0, progress: Progress = None
         return None
     intervals = dict(section.intervals)
     kind = display_kind(profile)
+    loose = tuple(k for k, (lo, hi) in intervals.items()
+                  if not math.isfinite(hi) or (lo <= 0 and not k.startswith(("dampings", "ground_dampings"))))
+    if loose:
+        coupling = profile.kc if kind.is_impedance else profile.bc_adm
+        return RobustDesigns(kind.is_impedance, intervals, None, None, coupling, False, loose)
     if kind.is_impedance:
         rs = robust_max_stiffness(profile.device, profile.bc, intervals, seed=seed)
         out = RobustDesigns(True, intervals, rs, None, profile.kc, rs.kc is not None and profile.kc <= rs.kc)

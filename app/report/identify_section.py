@@ -64,6 +64,8 @@ def _robust_rows(profile: Profile, res: dict, numbers: dict) -> tuple[tuple, str
     if rd is None:
         return (), ""
     rows = []
+    if rd.unbounded:
+        return (), f"<b class='bad'>{html.escape(rd.verdict())}</b>"
     if rd.impedance:
         s = rd.stiffness
         for key, label, value in (("robust.kc", "robust largest k<sub>c</sub> (eq. 9, whole box)", s.kc),
@@ -103,9 +105,14 @@ def identification_sections(profile: Profile, res: dict, numbers: dict) -> list[
     par = ("The device model was identified from measured frequency responses"
            + (f": {names}." if names else " (no measurements embedded).")
            + " The table gives each parameter of the profile's device with its 95&nbsp;% interval "
-           "(from the Jacobian of the weighted log-response fit, or typed by the user).")
+           "(from the Jacobian or the profile likelihood of the weighted log-response fit, or typed by the "
+           "user; &ldquo;unbounded&rdquo; where the measurements do not bound it).")
     out = [Section("Identification", (par,), _rows(profile, numbers))]
     rows, verdict = _robust_rows(profile, res, numbers)
+    if verdict and not rows:  # unbounded intervals: no box, and the reason
+        out.append(Section("Designs that hold for the whole parameter box", (
+            "A robust design needs every interval bounded; these measurements leave some open.",),
+            (), (verdict,)))
     if rows:
         out.append(Section("Designs that hold for the whole parameter box", (
             "The worst case over every device in the box of intervals above (screening, corners, a seeded "

@@ -95,7 +95,8 @@ class RobustActions(QObject):
         self.pending = False
         change = robust_changes(designs) if designs is not None else None
         if change is None:
-            self._say("No coupling satisfies the bound for every device in the parameter box", 8000)
+            self._say(designs.verdict() if designs is not None and designs.unbounded else
+                      "No coupling satisfies the bound for every device in the parameter box", 8000)
             return
         edits, message = change
         self.editor.edit_many(edits, "Robust design")

@@ -167,3 +167,14 @@ def test_cancel_stops_a_long_fit_at_once(win, qtbot, tmp_path):
     assert "cancelled" in tab.fit_progress.label.text()
     assert tab.result is None and not tab.panel.use_button.isEnabled()
 
+
+
+def test_unbounded_intervals_say_why_there_is_no_robust_design(win, qtbot):
+    section = IdentificationSection({"masses[0]": (0.0, float("inf")), "ground_dampings[3]": (1.2, 5.0)})
+    win.editor.edit_many({"identification": section}, "Set intervals")
+    qtbot.waitUntil(lambda: not win.verdict.robust.isHidden(), timeout=30000)
+    assert "no robust design: the measurements do not bound masses[0]" in win.verdict.robust.text()
+    kc = win.model.profile.kc
+    win.robust_actions.kc_action.trigger()
+    qtbot.wait(500)
+    assert win.model.profile.kc == kc  # nothing designed over a box that is not one
