@@ -37,7 +37,7 @@ from analysis.identify import (
 )
 from analysis.study import identify_chain
 
-from tests.hbfd_fixtures import make_hbfd
+from tests.hbfd_fixtures import make_hbfd, with_noise
 
 T = 1e-3
 W = np.geomspace(1.0, 0.95 * math.pi / T, 400)
@@ -48,8 +48,7 @@ def _measurements(device: Device, seed: int, quantities=("actuator",), noise: fl
     rng = np.random.default_rng(seed)  # the draws of tests/benchmarks/bench_identify.py
     out = []
     for q in quantities:
-        h = device_response(device, W, q, "free", sample_time=T)
-        h = h * (1 + noise * (rng.normal(size=W.size) + 1j * rng.normal(size=W.size)) / math.sqrt(2))
+        h = with_noise(device_response(device, W, q, "free", sample_time=T), rng, noise)
         out.append(make_measurement(W, h, q, "free", sample_time=T))
     return out
 

@@ -29,14 +29,12 @@ from analysis.identify import (
 )
 
 
-from tests.hbfd_fixtures import make_hbfd
+from tests.hbfd_fixtures import make_hbfd, with_noise
 
 T = 1e-3
 W = np.geomspace(1.0, 0.95 * math.pi / T, 400)
 
 
-def _noisy(h: np.ndarray, rng: np.random.Generator, level: float = 0.01) -> np.ndarray:
-    return h * (1 + level * (rng.normal(size=h.size) + 1j * rng.normal(size=h.size)) / math.sqrt(2))
 
 
 def test_profile_interval_of_a_linear_model_is_the_closed_form():
@@ -44,7 +42,7 @@ def test_profile_interval_of_a_linear_model_is_the_closed_form():
     # in theta = log m with slope -1 at every frequency, the phase residual does not depend on it.
     rng = np.random.default_rng(11)
     w = np.geomspace(1.0, 100.0, 200)
-    m = make_measurement(w, _noisy(-1.0 / (0.7 * w**2), rng), "actuator", "free")
+    m = make_measurement(w, with_noise(-1.0 / (0.7 * w**2), rng), "actuator", "free")
     prof = fit_chain([m], 1, ground_dampings=(), intervals="profile")
     wald = fit_chain([m], 1, ground_dampings=(), intervals="wald")
     F, R = w.size, 2 * w.size
@@ -64,7 +62,7 @@ def test_profile_interval_of_a_linear_model_is_the_closed_form():
 def test_profile_and_wald_agree_where_the_model_is_nearly_linear():
     d = make_hbfd()
     rng = np.random.default_rng(31)
-    ms = [make_measurement(W, _noisy(device_response(d, W, q, "free", sample_time=T), rng), q, "free",
+    ms = [make_measurement(W, with_noise(device_response(d, W, q, "free", sample_time=T), rng), q, "free",
                            sample_time=T) for q in ("actuator", "gauge")]
     auto = fit_chain(ms, 4, ground_dampings=(3,))
     assert set(auto.interval_methods) == {"wald"}  # the curvature check passes: no profile needed
@@ -97,7 +95,7 @@ def test_selection_rules():
 def test_actuator_alone_reports_the_handle_side_unbounded_and_no_robust_design():
     d = make_hbfd()
     rng = np.random.default_rng(4242)
-    m = make_measurement(W, _noisy(device_response(d, W, "actuator", "free", sample_time=T), rng), "actuator",
+    m = make_measurement(W, with_noise(device_response(d, W, "actuator", "free", sample_time=T), rng), "actuator",
                          "free", sample_time=T)
     fit = fit_chain([m], 4, ground_dampings=(3,))
     methods = dict(zip(fit.keys, fit.interval_methods))
