@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from analysis.chain.device import Device
-from analysis.identify.boxsearch import ParameterBox, SearchTrace, box_search, parameter_box
+from analysis.identify.boxsearch import ParameterBox, SearchTrace, box_search, open_intervals, parameter_box
 from analysis.identify.csvio import load_measurement, read_frf, read_timeseries
 from analysis.identify.errors import FitCancelled, MeasurementError, ParameterKeyError
 from analysis.identify.fit import fit_chain, order_selection
@@ -82,6 +82,7 @@ __all__ = [
     "load_measurement",
     "make_measurement",
     "merged_fit",
+    "open_intervals",
     "order_selection",
     "parameter_box",
     "parameter_keys",

@@ -24,6 +24,7 @@ boxes), and the design functions back off the final value.
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
@@ -34,7 +35,7 @@ from analysis.chain.device import Device
 from analysis.errors import ValidationError
 from analysis.identify.params import device_value, device_with, parse_key, physical_range
 
-__all__ = ["ParameterBox", "SearchTrace", "box_search", "parameter_box"]
+__all__ = ["ParameterBox", "SearchTrace", "box_search", "open_intervals", "parameter_box"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,6 +72,19 @@ class ParameterBox:
         return {k: float(v) for k, v in zip(self.keys, self.values(u)[0])}
 
 
+#: Fields whose values are positive: an interval of theirs reaching 0 is not a box edge.
+_POSITIVE = ("masses", "stiffnesses")
+
+
+def open_intervals(intervals: Mapping[str, tuple[float, float]], n: int) -> tuple[str, ...]:
+    """Keys of ``intervals`` (an ``n``-mass chain) that the data leave open, so that they bound no
+    box: a high end that is not finite, or a low end of 0 for a mass or stiffness (a fit's
+    unbounded ``(0, inf)``).  :func:`parameter_box` refuses them; a caller that wants to say why
+    rather than fail asks here first."""
+    return tuple(k for k, (lo, hi) in intervals.items()
+                 if not math.isfinite(hi) or (lo <= 0 and parse_key(k, n)[0] in _POSITIVE))
+
+
 def parameter_box(device: Device, intervals: Mapping[str, tuple[float, float]]) -> ParameterBox:
     """Validate ``intervals`` (``{key: (low, high)}``) against ``device``; point intervals are
     dropped (they fix the parameter at that value), and every interval is clipped to the physical
@@ -82,7 +96,7 @@ def parameter_box(device: Device, intervals: Mapping[str, tuple[float, float]]) 
         a, b = (float(x) for x in iv)
         if not (np.isfinite(a) and np.isfinite(b) and 0 <= a <= b):
             raise ValidationError(key, "an interval (low, high) with 0 <= low <= high, finite", iv)
-        if a == 0 and name in ("masses", "stiffnesses"):
+        if a == 0 and name in _POSITIVE:
             raise ValidationError(key, "low > 0 (masses and stiffnesses are positive)", iv)
         plo, phi = physical_range(key, device.n)
         a, b = min(max(a, plo if a > 0 else 0.0), phi), min(max(b, plo), phi)  # clip to the physical range

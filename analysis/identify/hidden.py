@@ -43,8 +43,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from analysis.identify.params import ChainParameters
-from analysis.identify.problem import FitProblem, log_bounds, solve
+from analysis.identify.problem import FitProblem, log_bounds, solve, solve_held
 
 __all__ = ["adopt_best", "FAMILY_MODES", "FAMILY_SHARES", "HANDLE_KEYS", "HiddenHandle", "handle_family", "hidden_handle",
            "merged_fit"]
@@ -95,19 +94,6 @@ def _with_handle(problem: FitProblem, theta: np.ndarray, m0: float, k0: float, b
     return np.clip(out, lo + 1e-9, hi - 1e-9)
 
 
-def _solve_held(problem: FitProblem, theta: np.ndarray, held: tuple[str, ...], nfev: int) -> tuple[float, np.ndarray]:
-    """RSS and full theta after refitting every free key but ``held`` from ``theta``."""
-    keys = list(problem.keys)
-    rest = [k for k in keys if k not in held]
-    base = ChainParameters.from_rows(keys, np.exp(theta)[None, :], problem.base)
-    sub = problem.sub(tuple(rest), base)
-    idx = [keys.index(k) for k in rest]
-    sol = solve(sub, theta[idx], nfev, tol=1e-10)
-    out = np.array(theta, float)
-    out[idx] = sol.x
-    return 2.0 * float(sol.cost), out
-
-
 def _top_frequency(problem: FitProblem) -> float:
     return max(float(np.max(m.frequency)) for m in problem.measurements)
 
@@ -119,7 +105,7 @@ def merged_fit(problem: FitProblem, theta: np.ndarray, nfev: int = 60) -> tuple[
     m0 = MERGED_SHARE * total
     k0 = m0 * (MERGED_ABOVE * _top_frequency(problem)) ** 2
     start = _with_handle(problem, theta, m0, k0, 2.0 * math.sqrt(k0 * m0), total)
-    return _solve_held(problem, start, HANDLE_KEYS, nfev)
+    return solve_held(problem, start, HANDLE_KEYS, nfev)
 
 
 def handle_family(problem: FitProblem, theta: np.ndarray) -> tuple[list[np.ndarray], np.ndarray]:
@@ -134,7 +120,7 @@ def handle_family(problem: FitProblem, theta: np.ndarray) -> tuple[list[np.ndarr
         for wh in modes:
             k0 = m0 * wh**2
             start = _with_handle(problem, theta, m0, k0, 2.0 * _FAMILY_RATIO * math.sqrt(k0 * m0), total)
-            r, th = _solve_held(problem, start, ("masses[0]",), _NFEV)
+            r, th = solve_held(problem, start, ("masses[0]",), _NFEV)
             thetas.append(th)
             rss.append(r)
     return thetas, np.array(rss)

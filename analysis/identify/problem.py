@@ -32,7 +32,7 @@ from analysis.identify.measurement import Measurement
 from analysis.identify.model import response
 from analysis.identify.params import ChainParameters, physical_range
 
-__all__ = ["FitProblem", "log_bounds", "solve"]
+__all__ = ["FitProblem", "log_bounds", "solve", "solve_held"]
 
 _FD_STEP = 1e-7
 _CENTRAL_STEP = 1e-5
@@ -135,3 +135,25 @@ def log_bounds(problem: FitProblem) -> tuple[np.ndarray, np.ndarray]:
     n = problem.base.n
     b = np.log(np.array([physical_range(k, n) for k in problem.keys]).reshape(-1, 2))
     return b[:, 0], b[:, 1]
+
+
+def solve_held(problem: FitProblem, theta: np.ndarray, held: tuple[str, ...], max_nfev: int,
+               tol: float = 1e-10) -> tuple[float, np.ndarray]:
+    """RSS and the full ``theta`` after refitting every free key of ``problem`` except ``held``
+    (kept at their values in ``theta``), started from ``theta``: the conditional fit of a
+    profile point (:mod:`analysis.identify.profile`) and of a handle-family member
+    (:mod:`analysis.identify.hidden`)."""
+    keys = list(problem.keys)
+    rest = [k for k in keys if k not in held]
+    theta = np.asarray(theta, float)
+    base = ChainParameters.from_rows(keys, np.exp(theta)[None, :], problem.base)
+    sub = problem.sub(tuple(rest), base)
+    if not rest:
+        r = sub.residual(np.zeros(0))
+        return float(r @ r), theta.copy()
+    idx = [keys.index(k) for k in rest]
+    sol = solve(sub, theta[idx], max_nfev, tol=tol)
+    out = theta.copy()
+    out[idx] = sol.x
+    return 2.0 * float(sol.cost), out
+

@@ -47,8 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from analysis.identify.params import ChainParameters
-from analysis.identify.problem import FitProblem, log_bounds, solve
+from analysis.identify.problem import FitProblem, log_bounds, solve_held
 
 __all__ = ["ProfileBound", "Profiler", "curvature_ratios", "profile_critical_value", "profile_intervals"]
 
@@ -100,22 +99,16 @@ class Profiler:
 
     def conditional(self, j: int, tj: float, start: np.ndarray) -> tuple[float, np.ndarray]:
         """``RSS_p(tj)`` and the other parameters at it, from ``start``."""
-        keys = list(self.problem.keys)
-        full = self.theta.copy()
+        others = np.arange(self.theta.size) != j
+        full = np.empty(self.theta.size)
         full[j] = tj
-        base = ChainParameters.from_rows(keys, np.exp(full)[None, :], self.problem.base)
-        sub = self.problem.sub(tuple(keys[:j] + keys[j + 1:]), base)
+        full[others] = np.clip(start, self.lo[others] + 1e-9, self.hi[others] - 1e-9)
         self.solves += 1
-        if not keys[:j] + keys[j + 1:]:
-            r = sub.residual(np.zeros(0))
-            return float(r @ r), np.zeros(0)
-        sol = solve(sub, np.clip(start, self.lo[np.arange(full.size) != j] + 1e-9,
-                                 self.hi[np.arange(full.size) != j] - 1e-9), _NFEV, tol=_TOL)
-        rss = 2.0 * float(sol.cost)
+        rss, full = solve_held(self.problem, full, (self.problem.keys[j],), _NFEV, _TOL)
         if rss < self.best_rss:
             self.best_rss = rss
-            self.best_theta = np.insert(sol.x, j, tj)
-        return rss, sol.x
+            self.best_theta = full
+        return rss, full[others]
 
     def tau(self, rss: float) -> float:
         return math.sqrt(max(rss - self.reference, 0.0) / self.s2)

@@ -97,6 +97,13 @@ def _table(keys: Sequence[str], problem: FitProblem, theta: np.ndarray, cov: np.
     return v, s, se, lo, hi, np.array(fx)
 
 
+def likelihood_level(problem: FitProblem, rss: float, p: int, reference: float | None = None) -> float:
+    """The largest RSS of a chain inside every 95 % likelihood-ratio interval: ``max(RSS,
+    reference) + chi2_1(0.95) s^2`` with ``s^2 = RSS / (R - p)``."""
+    s2 = rss / max(problem.n_residuals - p, 1)
+    return max(rss, reference if reference is not None else rss) + _CHI2_1 * s2
+
+
 def widen_to_equivalent_optima(keys: Sequence[str], problem: FitProblem, lo: np.ndarray, hi: np.ndarray,
                                rss: float, p: int, alternatives: Sequence[np.ndarray],
                                reference: float | None = None) -> tuple[np.ndarray, np.ndarray, set[str]]:
@@ -110,9 +117,7 @@ def widen_to_equivalent_optima(keys: Sequence[str], problem: FitProblem, lo: np.
     (default ``rss``) is the RSS the ratio is taken from (:mod:`analysis.identify.hidden`).
     Returns (lo, hi, keys whose interval moved).
     """
-    R = problem.n_residuals
-    s2 = rss / max(R - p, 1)
-    level = max(rss, reference if reference is not None else rss) + _CHI2_1 * s2
+    level = likelihood_level(problem, rss, p, reference)
     lo, hi = lo.copy(), hi.copy()
     moved: set[str] = set()
     for alt in alternatives:
@@ -253,8 +258,8 @@ def _widen(problem: FitProblem, keys: Sequence[str], lo: np.ndarray, hi: np.ndar
                                                     reference=hidden.rss_merged)
         for k in family:
             methods[list(keys).index(k)] += " + handle family"
-        s2 = rss / max(problem.n_residuals - p, 1)
-        accepted = int(np.count_nonzero(hidden.family_rss <= max(hidden.rss_merged, rss) + _CHI2_1 * s2))
+        level = likelihood_level(problem, rss, p, hidden.rss_merged)
+        accepted = int(np.count_nonzero(hidden.family_rss <= level))
         notes = [*notes, _hidden_note(hidden, accepted)]
     return lo, hi, moved, list(notes)
 

@@ -35,6 +35,7 @@ from analysis.identify import (
     fit_chain,
     load_measurement,
     make_measurement,
+    open_intervals,
     robust_feasible_damping,
     robust_max_stiffness,
 )
@@ -236,8 +237,7 @@ def robust_designs(profile: Profile, *, seed: int = 0, progress: Progress = None
         return None
     intervals = dict(section.intervals)
     kind = display_kind(profile)
-    loose = tuple(k for k, (lo, hi) in intervals.items()
-                  if not math.isfinite(hi) or (lo <= 0 and not k.startswith(("dampings", "ground_dampings"))))
+    loose = open_intervals(intervals, profile.device.n)
     if loose:
         coupling = profile.kc if kind.is_impedance else profile.bc_adm
         return RobustDesigns(kind.is_impedance, intervals, None, None, coupling, False, loose)
