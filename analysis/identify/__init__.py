@@ -32,7 +32,7 @@ from analysis.identify.boxsearch import ParameterBox, SearchTrace, box_search, o
 from analysis.identify.csvio import load_measurement, read_frf, read_timeseries
 from analysis.identify.errors import FitCancelled, MeasurementError, ParameterKeyError
 from analysis.identify.fit import fit_chain, order_selection
-from analysis.identify.hidden import HiddenHandle, handle_family, hidden_handle, merged_fit
+from analysis.identify.hidden import MERGED_SHARE, HiddenHandle, handle_family, hidden_handle, merged_fit
 from analysis.identify.measurement import Measurement, make_measurement
 from analysis.identify.model import BOUNDARIES, QUANTITIES, continuous_response, response, sampled_response
 from analysis.identify.params import ChainParameters, device_value, device_with, parameter_keys
@@ -53,6 +53,7 @@ from analysis.identify.welch import estimate_frf
 __all__ = [
     "BOUNDARIES",
     "INTERVAL_MODES",
+    "MERGED_SHARE",
     "QUANTITIES",
     "ChainFit",
     "ChainParameters",

@@ -25,8 +25,9 @@ Method
    widened to other optima that fit equally well (likelihood-ratio bound), identifiability
    with suggestions.  A handle mode the data do not show (BIC against the chain with mass 0
    merged into mass 1) refers the intervals to that chain, makes the handle's unknowns
-   unbounded and widens the rest to the family of handles that fit as well; the best member of
-   that family becomes the optimum when it fits better (:mod:`analysis.identify.hidden`).
+   unbounded and widens the rest to the family of handles that fit as well (the fit restarts
+   from the family's best member when it fits better), and the reported device is that merged
+   chain, the BIC's choice (:mod:`analysis.identify.hidden`).
 
 Identifiability of the HBFD
 ---------------------------

@@ -33,7 +33,9 @@ class ChainFit:
     Attributes
     ----------
     device:
-        The fitted :class:`~analysis.Device`.
+        The fitted :class:`~analysis.Device`: the least-squares optimum, or, when the handle mode
+        is not detected, the chain with the handle merged into mass 1 (the BIC's choice,
+        :mod:`analysis.identify.hidden`); ``values``, ``responses`` and the RSS are its own.
     keys, values, std_errors, lower, upper, fixed:
         The parameter table, one entry per key (fixed parameters have zero error and a point
         interval).  ``log_std`` is the standard error of ``log(value)``.

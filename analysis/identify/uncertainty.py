@@ -27,7 +27,7 @@ from scipy import optimize
 
 from analysis.chain.device import Device
 from analysis.identify.degenerate import SHARES, degenerate_masses, restart
-from analysis.identify.hidden import HANDLE_KEYS, HiddenHandle, adopt_best, hidden_handle
+from analysis.identify.hidden import HANDLE_KEYS, MERGED_SHARE, HiddenHandle, adopt_best, hidden_handle
 from analysis.identify.params import ChainParameters, parse_key
 from analysis.identify.problem import FitProblem
 from analysis.identify.profile import Profiler, curvature_ratios, profile_intervals
@@ -225,8 +225,10 @@ def _exact(problem: FitProblem, rss: float) -> bool:
 def _hidden_note(hidden: HiddenHandle, accepted: int) -> str:
     return (f"the handle mode is not detected in these measurements: the chain with mass 0 merged into "
             f"mass 1 fits within the BIC margin (RSS higher by {hidden.statistic:.3g} s^2, at most "
-            f"3 ln R = {hidden.critical:.3g}); the intervals are referred to that chain, and contain the "
-            f"{accepted} of {len(hidden.family)} scanned handle configurations that fit as well")
+            f"3 ln R = {hidden.critical:.3g}); the fitted device is that chain (its handle a "
+            f"{MERGED_SHARE:.0e} share of the pair's mass on a stiff element), the intervals are referred "
+            f"to it, and contain the {accepted} of {len(hidden.family)} scanned handle configurations that "
+            f"fit as well")
 
 
 def _grouped(bad: Sequence[str], sugg: Mapping[str, str], unbounded: set[str]) -> list[str]:
@@ -254,8 +256,8 @@ def _widen(problem: FitProblem, keys: Sequence[str], lo: np.ndarray, hi: np.ndar
     for k in moved:
         methods[list(keys).index(k)] += " + other optima"
     if hidden is not None and not hidden.detected:
-        lo, hi, family = widen_to_equivalent_optima(keys, problem, lo, hi, rss, p, hidden.family,
-                                                    reference=hidden.rss_merged)
+        lo, hi, family = widen_to_equivalent_optima(keys, problem, lo, hi, rss, p,
+                                                    [*hidden.family, hidden.merged], reference=hidden.rss_merged)
         for k in family:
             methods[list(keys).index(k)] += " + handle family"
         level = likelihood_level(problem, rss, p, hidden.rss_merged)
@@ -285,15 +287,24 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
         corr = cov / np.outer(sd, sd)
     methods, notes = _choose_intervals(problem, theta, rss, cov, corr, keys, s, fx, lo, hi, intervals, notes,
                                        hidden)
+    lo, hi, moved, notes = _widen(problem, keys, lo, hi, rss, alternatives, hidden, methods, notes)
+    undetected = hidden is not None and not hidden.detected
+    if undetected:  # the reported chain is the merged one (analysis.identify.hidden)
+        theta = np.asarray(hidden.merged, float)
+        r = problem.residual(theta)
+        rss = float(r @ r)
+        cov, null = covariance(problem.jacobian(theta, central=True), rss)
+        v, s, se, _, _, fx = _table(keys, problem, theta, cov, null, fixed)
+        sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            corr = cov / np.outer(sd, sd)
     chain: ChainParameters = problem.chains(theta)
     n = chain.n
     device = chain.device(0, template)
-    lo, hi, moved, notes = _widen(problem, keys, lo, hi, rss, alternatives, hidden, methods, notes)
     bad = tuple(k for k, sk, f, m, a, b in zip(keys, s, fx, methods, lo, hi) if not f and (
         (not (sk <= _WIDE) and not m.startswith("profile")) or k in moved or "unbounded" in m
         or not b <= 10.0 * a))
     measured = {(m.quantity, m.boundary) for m in problem.measurements}
-    undetected = hidden is not None and not hidden.detected
     sugg = {k: suggestion(k, n, measured, undetected) for k in bad}
     if moved:
         notes = [*notes, f"other local optima fit the data as well (within the 95 % likelihood-ratio bound); "
