@@ -54,6 +54,15 @@ def test_round_trip_keeps_every_number(tmp_path):
                                                                                   "frf.csv")
 
 
+def test_the_fit_notes_round_trip_and_are_left_out_when_empty(tmp_path):
+    assert "notes" not in with_section()["identification"]
+    p = profile_from_dict(with_section(notes=["the handle mode is not detected", "masses[0] is loose"]))
+    assert p.identification.notes == ("the handle mode is not detected", "masses[0] is loose")
+    save_profile(p, tmp_path / "n.json")
+    assert load_profile(tmp_path / "n.json") == p
+    assert profile_to_dict(p)["identification"]["notes"] == ["the handle mode is not detected", "masses[0] is loose"]
+
+
 def test_old_schemas_load_without_the_section():
     for version in (1, 2, 3):
         d = profile_to_dict(hbfd())
@@ -72,6 +81,8 @@ def test_old_schemas_load_without_the_section():
     ({"intervals": {"masses[0]": [1, "big"]}}, '$.identification.intervals["masses[0]"][1]', 'or "inf"'),
     ({"intervals": {"masses[0]": [1]}}, '$.identification.intervals["masses[0]"]', "[low, high]"),
     ({"extra": 1}, "$.identification.extra", "unknown key"),
+    ({"notes": "one line"}, "$.identification.notes", "a list of strings"),
+    ({"notes": ["ok", 3]}, "$.identification.notes[1]", "a string"),
 ])
 def test_bad_intervals_name_the_json_path(change, json_path, text):
     with pytest.raises(ProfileError) as info:
@@ -118,6 +129,7 @@ def test_fit_to_profile_and_the_embedded_measurements_reproduce_the_fit():
     np.testing.assert_allclose(q.device.ground_dampings, d.ground_dampings, rtol=1e-6, atol=1e-9)
     assert set(q.identification.intervals) == set(fit.keys)
     assert q.identification.measurements[0].source == "frf.csv"
+    assert q.identification.notes == fit.warnings
     (back,) = section_measurements(q.identification)
     np.testing.assert_array_equal(back.response, m.response)
     (mm, model), = fit_curves(q)

@@ -88,8 +88,9 @@ def test_a_profile_with_unbounded_intervals_reports_why_there_is_no_robust_desig
 
     p = load_profile(seed_profile)
     sec = p.identification
+    note = "the handle mode is not detected in these measurements: <the device is the merged chain>"
     p = p.replace(identification=IdentificationSection({**sec.intervals, "masses[0]": (0.0, float("inf"))},
-                                                       sec.measurements))
+                                                       sec.measurements, (note,)))
     path = tmp_path / "open.json"
     save_profile(p, path)
     c = gather(load_profile(path), sampled=False)
@@ -98,5 +99,8 @@ def test_a_profile_with_unbounded_intervals_reports_why_there_is_no_robust_desig
     assert "no robust design: the measurements do not bound masses[0]" in robust.after[0]
     ident = next(s for s in c.sections if s.title == "Identification")
     assert any("unbounded" in r.value or "unbounded" in r.unit for r in ident.rows)
+    assert ident.after[0].startswith("<b>What the fit said</b>")
+    assert ident.after[1] == "&bull;&nbsp;the handle mode is not detected in these measurements: " \
+                             "&lt;the device is the merged chain&gt;"
     assert main(["report", str(path), "-o", str(tmp_path / "open.pdf")]) == 0
 

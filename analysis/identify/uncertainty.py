@@ -266,6 +266,19 @@ def _widen(problem: FitProblem, keys: Sequence[str], lo: np.ndarray, hi: np.ndar
     return lo, hi, moved, list(notes)
 
 
+def _at(problem: FitProblem, theta: np.ndarray, rss: float, keys: Sequence[str],
+        fixed: Mapping[str, float]) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...]]:
+    """Covariance, correlation and the Wald table (:func:`_table`) at ``theta``."""
+    p = theta.size
+    J = problem.jacobian(theta, central=True) if p else np.zeros((problem.n_residuals, 0))
+    cov, null = covariance(J, rss)
+    table = _table(keys, problem, theta, cov, null, fixed)
+    sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        corr = cov / np.outer(sd, sd)
+    return cov, corr, table
+
+
 def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Sequence[str],
               fixed: Mapping[str, float], template: Device, n_starts: int,
               notes: Sequence[str] = (), alternatives: Sequence[np.ndarray] = (),
@@ -279,12 +292,7 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
     R, p = r.size, theta.size
     hidden = hidden_handle(problem, theta, rss) if intervals != "wald" and p and not _exact(problem, rss) else None
     theta, rss, hidden = adopt_best(problem, theta, rss, hidden)
-    J = problem.jacobian(theta, central=True) if p else np.zeros((R, 0))
-    cov, null = covariance(J, rss)
-    v, s, se, lo, hi, fx = _table(keys, problem, theta, cov, null, fixed)
-    sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        corr = cov / np.outer(sd, sd)
+    cov, corr, (v, s, se, lo, hi, fx) = _at(problem, theta, rss, keys, fixed)
     methods, notes = _choose_intervals(problem, theta, rss, cov, corr, keys, s, fx, lo, hi, intervals, notes,
                                        hidden)
     lo, hi, moved, notes = _widen(problem, keys, lo, hi, rss, alternatives, hidden, methods, notes)
@@ -293,11 +301,7 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
         theta = np.asarray(hidden.merged, float)
         r = problem.residual(theta)
         rss = float(r @ r)
-        cov, null = covariance(problem.jacobian(theta, central=True), rss)
-        v, s, se, _, _, fx = _table(keys, problem, theta, cov, null, fixed)
-        sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            corr = cov / np.outer(sd, sd)
+        cov, corr, (v, s, se, _, _, fx) = _at(problem, theta, rss, keys, fixed)
     chain: ChainParameters = problem.chains(theta)
     n = chain.n
     device = chain.device(0, template)

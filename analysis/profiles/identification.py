@@ -8,7 +8,8 @@ It keeps what a device model was identified from, so that the profile stays self
         {"source": "frf.csv", "quantity": "actuator", "boundary": "free",
          "sample_time": 0.001, "delay_samples": 0,
          "frequency": [...], "real": [...], "imag": [...], "coherence": [...]}
-      ]
+      ],
+      "notes": ["the handle mode is not detected in these measurements: ..."]
     }
 
 * ``intervals`` -- 95 % (or user-typed) intervals on device parameters, keyed by the profile's
@@ -20,7 +21,10 @@ It keeps what a device model was identified from, so that the profile stays self
   (> 0, strictly increasing), ``real``/``imag`` of the response, optional ``coherence`` in
   [0, 1]; ``quantity`` (``actuator`` | ``handle`` | ``gauge``), ``boundary`` (``free`` |
   ``clamped``), ``sample_time`` (s, or ``null`` for a continuous-time measurement),
-  ``delay_samples`` and an optional ``source`` name.
+  ``delay_samples`` and an optional ``source`` name;
+* ``notes`` (optional) -- the fit's warnings, one string each (e.g. that the handle mode was not
+  detected, so the device is the chain with the handle merged into mass 1); the report prints
+  them under the parameter table.  Left out of the file when empty.
 
 The section is plain data (this module does not import :mod:`analysis.identify`, which sits in
 the same layer); :mod:`analysis.study.identify` turns it into measurements and fits.  Errors are
@@ -94,6 +98,7 @@ class IdentificationSection:
 
     intervals: dict[str, tuple[float, float]]
     measurements: tuple[MeasurementData, ...] = ()
+    notes: tuple[str, ...] = ()
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, IdentificationSection) and self.to_dict() == other.to_dict()
@@ -103,8 +108,11 @@ class IdentificationSection:
 
     def to_dict(self) -> dict:
         """The JSON-ready section."""
-        return {"intervals": {k: [float(lo), json_float(float(hi))] for k, (lo, hi) in self.intervals.items()},
-                "measurements": [m.to_dict() for m in self.measurements]}
+        out: dict = {"intervals": {k: [float(lo), json_float(float(hi))] for k, (lo, hi) in self.intervals.items()},
+                     "measurements": [m.to_dict() for m in self.measurements]}
+        if self.notes:
+            out["notes"] = list(self.notes)
+        return out
 
 
 def _fail(jp: str, expected: str, value: object) -> ProfileError:
@@ -203,10 +211,10 @@ def parse_identification(data: object, jp: str = "$.identification") -> Identifi
     """The section of a profile dict (strict: unknown keys and bad values raise ProfileError)."""
     if not isinstance(data, Mapping):
         raise _fail(jp, "a JSON object with keys intervals and measurements", data)
-    unknown = sorted(str(k) for k in data if k not in ("intervals", "measurements"))
+    unknown = sorted(str(k) for k in data if k not in ("intervals", "measurements", "notes"))
     if unknown:
-        raise ProfileError("unknown key (allowed: intervals, measurements)", json_path=f"{jp}.{unknown[0]}",
-                           expected="one of intervals, measurements")
+        raise ProfileError("unknown key (allowed: intervals, measurements, notes)", json_path=f"{jp}.{unknown[0]}",
+                           expected="one of intervals, measurements, notes")
     raw = data.get("intervals", {})
     if not isinstance(raw, Mapping):
         raise _fail(f"{jp}.intervals", "a JSON object {key: [low, high]}", raw)
@@ -214,8 +222,14 @@ def parse_identification(data: object, jp: str = "$.identification") -> Identifi
     items = data.get("measurements", [])
     if not isinstance(items, list):
         raise _fail(f"{jp}.measurements", "a list of measurements", items)
+    notes = data.get("notes", [])
+    if not isinstance(notes, list):
+        raise _fail(f"{jp}.notes", "a list of strings", notes)
+    for i, text in enumerate(notes):
+        if not isinstance(text, str):
+            raise _fail(f"{jp}.notes[{i}]", "a string", text)
     return IdentificationSection(intervals, tuple(_measurement(m, f"{jp}.measurements[{i}]")
-                                                  for i, m in enumerate(items)))
+                                                  for i, m in enumerate(items)), tuple(notes))
 
 
 def check_against_device(section: IdentificationSection, n_masses: int,

@@ -163,9 +163,10 @@ def _data(m: Measurement) -> MeasurementData:
 def profile_with_fit(profile: Profile, fit: ChainFit, measurements: Sequence[Measurement] | None = None,
                      name: str | None = None) -> Profile:
     """``profile`` with the fitted device (its band kept) and the identification section: the 95 %
-    intervals of the free parameters and the measurements embedded."""
+    intervals of the free parameters, the measurements embedded and the fit's warnings."""
     free = {k: iv for k, iv, fixed in zip(fit.keys, fit.intervals.values(), fit.fixed) if not fixed}
-    section = IdentificationSection(free, tuple(_data(m) for m in (measurements or fit.measurements)))
+    section = IdentificationSection(free, tuple(_data(m) for m in (measurements or fit.measurements)),
+                                    tuple(fit.warnings))
     return profile.replace(device=fit.device, identification=section,
                            **({} if name is None else {"name": name}))
 

@@ -107,7 +107,11 @@ def identification_sections(profile: Profile, res: dict, numbers: dict) -> list[
            + " The table gives each parameter of the profile's device with its 95&nbsp;% interval "
            "(from the Jacobian or the profile likelihood of the weighted log-response fit, or typed by the "
            "user; &ldquo;unbounded&rdquo; where the measurements do not bound it).")
-    out = [Section("Identification", (par,), _rows(profile, numbers))]
+    notes: tuple[str, ...] = ()
+    if sec.notes:
+        notes = ("<b>What the fit said</b> about these measurements:",
+                 *(f"&bull;&nbsp;{html.escape(t)}" for t in sec.notes))
+    out = [Section("Identification", (par,), _rows(profile, numbers), notes)]
     rows, verdict = _robust_rows(profile, res, numbers)
     if verdict and not rows:  # unbounded intervals: no box, and the reason
         out.append(Section("Designs that hold for the whole parameter box", (
