@@ -31,16 +31,14 @@ from analysis.identify import (
     ChainParameters,
     FitCancelled,
     FitProblem,
-    device_response,
     device_value,
     fit_chain,
     hidden_handle,
-    make_measurement,
     merged_fit,
 )
 from analysis.study import identify_chain
 
-from tests.hbfd_fixtures import make_hbfd, with_noise
+from tests.hbfd_fixtures import hbfd_replicate, make_hbfd
 
 T = 1e-3
 W = np.geomspace(1.0, 0.95 * math.pi / T, 400)
@@ -48,12 +46,7 @@ HANDLE = ("masses[0]", "stiffnesses[0]", "dampings[0]")
 
 
 def _measurements(device: Device, seed: int, quantities=("actuator",), noise: float = 0.01):
-    rng = np.random.default_rng(seed)  # the draws of tests/benchmarks/bench_identify.py
-    out = []
-    for q in quantities:
-        h = with_noise(device_response(device, W, q, "free", sample_time=T), rng, noise)
-        out.append(make_measurement(W, h, q, "free", sample_time=T))
-    return out
+    return hbfd_replicate(device, seed, tuple(quantities), noise)  # the draws of the benchmark
 
 
 def _problem(fit, measurements) -> tuple[FitProblem, np.ndarray]:

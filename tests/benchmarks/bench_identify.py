@@ -17,7 +17,6 @@
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 from scipy import signal
@@ -29,25 +28,17 @@ from analysis.identify import (
     device_value,
     estimate_frf,
     fit_chain,
-    make_measurement,
     robust_max_stiffness,
 )
 
 from tests.benchmarks.common import hbfd, timeit
+from tests.hbfd_fixtures import hbfd_replicate
 
 T = 1e-3
 
 
 def _measurements(dev, n_freq: int, noise: float, seed: int, quantities=("actuator",)):
-    w = np.geomspace(1.0, 0.95 * math.pi / T, n_freq)
-    rng = np.random.default_rng(seed)
-    out = []
-    for q in quantities:
-        h = device_response(dev, w, q, "free", sample_time=T)
-        if noise:
-            h = h * (1 + noise * (rng.normal(size=w.size) + 1j * rng.normal(size=w.size)) / math.sqrt(2))
-        out.append(make_measurement(w, h, q, "free", sample_time=T))
-    return out
+    return hbfd_replicate(dev, seed, tuple(quantities), noise, n_freq, T)
 
 
 def _max_error(fit, dev) -> float:

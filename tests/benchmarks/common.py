@@ -11,11 +11,12 @@ import numpy as np
 
 from analysis import Device
 
+from tests.hbfd_fixtures import make_hbfd
+
 
 def hbfd(ratio: float = 0.1, b4: float = 5.0) -> Device:
-    """The paper's HBFD worst-case configuration (Adams et al., section V)."""
-    return Device.from_damping_ratios([0.2, 2.3, 2.0, 0.5], [130e3, 84e3, 874e3], ratio,
-                                      ground_dampings=[0, 0, 0, b4], sample_time=1e-3)
+    """The paper's HBFD worst-case configuration (Adams et al., section V): the tests' device."""
+    return make_hbfd(ratio, b4)
 
 
 def long_chain(n: int, seed: int = 0) -> Device:
