@@ -14,7 +14,7 @@ import math
 import mpmath as mp
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from analysis import AdmittanceDisplay, Device, ImpedanceDisplay, ValidationError
@@ -80,10 +80,29 @@ def test_no_nan_no_overflow_no_warning_admittance(dev):
     assert not np.any(np.isnan(res.margin))
 
 
+def _reactance_ratio(p: tuple) -> np.ndarray:
+    """``|p_ii| / |Re p_ii|``, the larger of the two ports: how much of a diagonal entry's real
+    part (which eta needs) is lost to the round-off of the complex entry."""
+    with np.errstate(divide="ignore"):
+        return np.maximum(np.abs(p[0]) / np.abs(p[0].real), np.abs(p[3]) / np.abs(p[3].real))
+
+
+# CI, 2026-12-02: a nearly lossless port (Re p_ii = 1e-10 |p_ii|) converted to Z and back moved
+# eta = 6535 by 1.19e-6 relative -- round-off of the real parts, not an error of eta.
+_LOSSLESS = Device(masses=[4.03428793e+02, 6.73794700e-03, 1.0, 1.0], stiffnesses=[1.20260428e+06, 1.0, 1.0],
+                   dampings=[4.89379778e+02, 2.73272714e-06, 1.41421356e+00], ground_dampings=[0.0, 0.0, 1.0, 0.0],
+                   sensor_element=0, sample_time=math.exp(-4.0), band_min=1.0)
+
+
 @STRESS
 @given(extreme_device(n_max=12), st.sampled_from(["y", "h", "g"]))
+@example(_LOSSLESS, "y")
 def test_eta_invariant_across_forms(dev, form):
-    """eta of the coupled interface (eq. 7) is the same in Z, Y, H and G form."""
+    """eta of the coupled interface (eq. 7) is the same in Z, Y, H and G form, to 1e-6 relative
+    plus the round-off a conversion cannot avoid: each converted entry is exact to a few ulps of
+    its modulus and of the 2x2 matrix's condition number, so its real part is exact only to
+    ``eps * cond * |p_ii| / |Re p_ii|`` relative, and eta (``2 Re p11 Re p22 - Re p12 p21``)
+    inherits the sum over both ports.  For ordinary ports this term is far below 1e-6."""
     w = np.geomspace(dev.band_min, dev.nyquist * 0.99, 25)
     imp = ImpedanceDisplay(dev)
     y = imp.two_port(w)
@@ -95,7 +114,11 @@ def test_eta_invariant_across_forms(dev, form):
     other = convert(z, "z", form)
     e_other = eta(other)
     ok = np.isfinite(e_y) & (np.abs(arr[1] * arr[2]) > 1e-200) & (np.abs(e_y) < 1e12)
-    np.testing.assert_allclose(e_other[ok], e_y[ok], rtol=1e-6, atol=1e-9)
+    cond = np.linalg.cond(np.stack(arr, axis=-1).reshape(-1, 2, 2))
+    ratio = np.maximum(_reactance_ratio(arr), _reactance_ratio(other))
+    rtol = 1e-6 + 16 * np.finfo(float).eps * cond * 2 * ratio
+    err = np.abs(e_other - e_y)
+    assert np.all(err[ok] <= rtol[ok] * np.abs(e_y[ok]) + 1e-9), (err / np.abs(e_y))[ok]
 
 
 def _seeded_extreme(rng: np.random.Generator, n_lo: int, n_hi: int, ground_at_actuator: bool) -> Device:
