@@ -8,6 +8,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))  # document the working tree, not an installed copy
+sys.path.insert(0, str(ROOT / "docs" / "_ext"))  # api_docstrings: the numpydoc check of the API
 
 _pyproject = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
 
@@ -20,6 +21,7 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.napoleon",
     "myst_parser",
+    "api_docstrings",
 ]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 
