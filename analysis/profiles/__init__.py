@@ -8,7 +8,8 @@ The modules are layered, each importing only those listed before it (no cycle):
   :mod:`analysis.transparency.settings` and :mod:`analysis.sampled.scenarios`, never the wall
   design or the simulator);
 * :mod:`.fields` -- checking the fields of a current-schema profile dict;
-* :mod:`.files` -- strict JSON reading, atomic writing, the bundled presets;
+* :mod:`.files` -- strict JSON reading, the one atomic file writer (:func:`atomic_write`, used by
+  the app's saves, exports and reports too), the bundled presets;
 * :mod:`.io` -- schema version, migrations, ``load_profile``/``save_profile``.
 """
 
@@ -16,7 +17,7 @@ from __future__ import annotations
 
 from .errors import ProfileError
 from .controller import ControllerSection, parse_controller
-from .files import bundled_profiles, read_json, write_atomically
+from .files import WriteError, atomic_write, bundled_profiles, read_json, sweep_temporaries, write_atomically
 from .fields import profile_from_current
 from .io import (
     MIGRATIONS,
@@ -60,4 +61,7 @@ __all__ = [
     "profile_from_current",
     "read_json",
     "write_atomically",
+    "atomic_write",
+    "WriteError",
+    "sweep_temporaries",
 ]

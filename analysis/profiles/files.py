@@ -1,7 +1,8 @@
-"""Profile files on disk: strict JSON reading, atomic writing, and the bundled presets.
+"""Profile files on disk: strict JSON reading, the one atomic file writer, and the bundled presets.
 
 :func:`analysis.profiles.load_profile` and :func:`analysis.profiles.save_profile` are built on
-these; every failure is a :class:`ProfileError` naming the file.
+these; every failure is a :class:`ProfileError` naming the file.  :func:`atomic_write` is the one
+way zwidth writes any file (profiles, plot exports, reports): both layers use it.
 
 Numerics only: this module never imports Qt.
 """
@@ -10,14 +11,18 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import stat
 import tempfile
+import time
+from collections.abc import Callable
 from pathlib import Path
 
 from analysis.profiles.errors import NonFinite, ProfileError
 from analysis.resources import resource_path
 
-__all__ = ["bundled_profiles", "read_json", "write_atomically", "unwritable_reason"]
+__all__ = ["bundled_profiles", "read_json", "write_atomically", "unwritable_reason", "atomic_write", "WriteError",
+           "sweep_temporaries", "is_temporary", "STALE_AFTER"]
 
 
 class _DuplicateKey(Exception):
@@ -67,11 +72,14 @@ def read_json(path: str | os.PathLike) -> object:
 
 
 def _target_path(path: str | os.PathLike) -> Path:
-    """The real path that ``path`` names (symlinks resolved), for :func:`write_atomically`."""
+    """The real path that ``path`` names (symlinks resolved), for :func:`atomic_write`."""
     try:
-        return Path(os.path.realpath(os.fspath(path)))
+        name = os.fspath(path)
+        if "\0" in str(name):
+            raise ValueError("embedded null character")
+        return Path(os.path.realpath(name))
     except (TypeError, ValueError) as exc:
-        raise ProfileError(f"not a usable file name: {exc}", path=str(path)) from exc
+        raise WriteError(str(path), f"not a usable file name: {exc}") from exc
 
 
 def _new_file_mode() -> int:
@@ -100,41 +108,57 @@ def unwritable_reason(path: str | os.PathLike) -> str | None:
     return None
 
 
-def write_atomically(path: str | os.PathLike, text: str) -> None:
-    """Write ``text`` to the file ``path`` names (symlinks resolved) atomically.
+# -- the one atomic file writer ------------------------------------------------------------------
 
-    The text goes to a temporary file in the same directory, which is flushed, fsynced and then
-    renamed over the target (keeping the permissions of an existing file); on any failure the
-    temporary file is removed and an existing file is left untouched.  Raises
-    :class:`ProfileError` naming ``path`` as given (with the OSError as its cause).
-    """
-    target = _target_path(path)
-    tmp_name = None
+#: how the temporary files of an unfinished save are named: ``.<name>.zwidth-<random>.tmp``
+TEMP_MARK = ".zwidth-"
+_TEMP_NAME = re.compile(r"^\..+\.zwidth-[A-Za-z0-9_]+\.tmp$")
+#: a temporary file of ours this old (seconds) belongs to a save that was killed: the next save sweeps it
+STALE_AFTER = 600.0
+
+
+class WriteError(OSError):
+    """A file could not be written; ``strerror`` is the reason in words (``"No such folder: /x"``),
+    ``filename`` the path as given.  ``str()``: ``cannot write <path>: <reason>``."""
+
+    def __init__(self, path: str | os.PathLike, reason: str, errno: int | None = None) -> None:
+        super().__init__(errno, reason)
+        self.filename = os.fspath(path)
+
+    def __str__(self) -> str:
+        return f"cannot write {self.filename}: {self.strerror}"
+
+
+def is_temporary(name: str) -> bool:
+    """Whether the file name ``name`` is one of :func:`atomic_write`'s temporaries."""
+    return bool(_TEMP_NAME.match(name))
+
+
+def sweep_temporaries(folder: str | os.PathLike, older_than: float = STALE_AFTER) -> list[Path]:
+    """Remove the temporaries of ours in ``folder`` last written more than ``older_than`` seconds
+    ago (saves killed before their rename); returns what was removed.  Never raises."""
+    removed: list[Path] = []
+    limit = time.time() - older_than
     try:
-        fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-            fh.flush()
-            os.fsync(fh.fileno())
+        entries = list(os.scandir(folder))
+    except OSError:
+        return removed
+    for entry in entries:
+        if not is_temporary(entry.name):
+            continue
         try:
-            mode = stat.S_IMODE(os.stat(target).st_mode)
-        except FileNotFoundError:
-            mode = _new_file_mode()
-        os.chmod(tmp_name, mode)
-        os.replace(tmp_name, target)
-        tmp_name = None
-    except Exception as exc:  # noqa: BLE001
-        reason = unwritable_reason(path) or (exc.strerror if isinstance(exc, OSError) and exc.strerror
-                                             else f"{type(exc).__name__}: {exc}")
-        raise ProfileError(f"cannot save: {reason}", path=path) from exc
-    finally:
-        if tmp_name is not None:
-            try:
-                os.unlink(tmp_name)
-            except OSError:
-                pass
-    try:  # make the rename itself durable; not possible everywhere
-        dir_fd = os.open(target.parent, os.O_RDONLY)
+            if entry.is_file(follow_symlinks=False) and entry.stat(follow_symlinks=False).st_mtime < limit:
+                os.unlink(entry.path)
+                removed.append(Path(entry.path))
+        except OSError:
+            continue
+    return removed
+
+
+def _fsync_folder(folder: Path) -> None:
+    """Make a rename in ``folder`` durable (not possible everywhere)."""
+    try:
+        dir_fd = os.open(folder, os.O_RDONLY)
     except OSError:
         return
     try:
@@ -143,6 +167,79 @@ def write_atomically(path: str | os.PathLike, text: str) -> None:
         pass
     finally:
         os.close(dir_fd)
+
+
+def _reason(path: str | os.PathLike, exc: BaseException) -> str:
+    """The reason in words: what is visibly wrong with ``path``, else the error's own words."""
+    if isinstance(exc, OSError):
+        return unwritable_reason(path) or exc.strerror or str(exc)
+    return unwritable_reason(path) or f"{type(exc).__name__}: {exc}"
+
+
+def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[str], object], *,
+                 encoding: str = "utf-8") -> None:
+    """Write the file ``path`` names (symlinks resolved) so that it is always the old or the new file.
+
+    ``data`` is bytes, text (``encoding``), or a callback ``write(temp_path)`` that writes the
+    file itself (Qt's ``QPdfWriter``, exporters that take a file name).  The content goes to a
+    temporary file ``.<name>.zwidth-<random>.tmp`` in the same folder, which is fsynced and renamed
+    over the target (keeping an existing file's permissions), then the folder is fsynced.  On
+    every error path, an exception from the callback included, the temporary file is removed and
+    an existing file is left untouched.  Each save first sweeps the folder's temporaries of ours
+    older than :data:`STALE_AFTER` (left by saves that were killed).
+
+    Raises :class:`WriteError` (an ``OSError``) with the reason in words; an exception raised by
+    the callback that is not an ``OSError`` is passed on unchanged.
+    """
+    target = _target_path(path)
+    if target.is_dir():  # checked first: a folder is never replaced, and nothing is left behind
+        raise WriteError(path, f"Is a folder: {target}")
+    sweep_temporaries(target.parent)
+    tmp_name: str | None = None
+    try:
+        fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}{TEMP_MARK}", suffix=".tmp", dir=target.parent)
+        if callable(data):
+            os.close(fd)
+            data(tmp_name)
+            fd = os.open(tmp_name, os.O_RDONLY)
+            try:
+                os.fsync(fd)
+            finally:
+                os.close(fd)
+        else:
+            with os.fdopen(fd, "wb") as fh:
+                fh.write(data.encode(encoding) if isinstance(data, str) else data)
+                fh.flush()
+                os.fsync(fh.fileno())
+        try:
+            mode = stat.S_IMODE(os.stat(target).st_mode)
+        except FileNotFoundError:
+            mode = _new_file_mode()
+        os.chmod(tmp_name, mode)
+        os.replace(tmp_name, target)
+        tmp_name = None
+    except OSError as exc:
+        raise WriteError(path, _reason(path, exc), getattr(exc, "errno", None)) from exc
+    except (TypeError, ValueError) as exc:
+        if callable(data):
+            raise
+        raise WriteError(path, _reason(path, exc)) from exc
+    finally:
+        if tmp_name is not None:
+            try:
+                os.unlink(tmp_name)
+            except OSError:
+                pass
+    _fsync_folder(target.parent)
+
+
+def write_atomically(path: str | os.PathLike, text: str) -> None:
+    """Write ``text`` to ``path`` with :func:`atomic_write`; raises :class:`ProfileError` naming
+    ``path`` as given (with the :class:`WriteError` as its cause)."""
+    try:
+        atomic_write(path, text)
+    except WriteError as exc:
+        raise ProfileError(f"cannot save: {exc.strerror}", path=path) from exc
 
 
 def bundled_profiles() -> dict[str, Path]:
