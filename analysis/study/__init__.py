@@ -13,12 +13,24 @@
 * :mod:`.identify` -- identification fits, the profile's identification section and the
   robust designs over its parameter box (issue 14);
 * :mod:`.labels` -- names and units of swept parameters, hold models and plants, for people.
+* :mod:`.requests` -- what each computation depends on: frozen requests built from a profile
+  (each computation takes its request, or a profile from which it builds it);
 * :mod:`.citations` -- the full references of the papers whose equation numbers zwidth shows.
 """
 
 from __future__ import annotations
 
-from .displays import ADMITTANCE, DISPLAY_KINDS, IMPEDANCE, DisplayKind, Gain, display_kind, profile_filter
+from .displays import ADMITTANCE, DISPLAY_KINDS, IMPEDANCE, DeviceRequest, DisplayKind, Gain, display_kind, profile_filter
+from .requests import (
+    ChartRequest,
+    ExactChartRequest,
+    ExactLimitRequest,
+    LoopRequest,
+    MapRequest,
+    PointRequest,
+    SimulationRequest,
+    StabilityRequest,
+)
 from .quantities import DIGITS, QUANTITIES, Quantity, format_number, quantity, rich_numbers, superscript_numbers
 from .headline import DESIGN_KEYS, HEADLINE_KEYS, Headline, designs, headline
 from .compute import (
@@ -42,6 +54,7 @@ from .compute import (
     simulation_section,
     stability,
     stability_map,
+    stability_map_result,
 )
 from .wall import (
     DEFAULT_BC,
@@ -52,8 +65,12 @@ from .wall import (
     mass_scale,
     observer_device_label,
     wall_device_label,
+    TwoAxisRequest,
+    TwoAxisStepRequest,
     WallAdmittances,
+    WallAtRequest,
     WallPoint,
+    WallRequest,
     WallTradeoff,
     admittance_grid,
     observer_coupling,
@@ -72,6 +89,9 @@ from .labels import HOLD_LABELS, PARAMETER_LABELS, PLANT_LABELS, SCENARIO_TIPS, 
 from .summary import SUMMARY_VERSION, design_summary, format_design, format_summary, summarize
 from .zwidth import (
     OPTIMUM_CUTOFFS,
+    OptimumRequest,
+    TrialsRequest,
+    ZWidthRequest,
     ZWidthStudy,
     controller_section,
     filter_optimum,
@@ -85,11 +105,13 @@ from .zwidth import (
     wall_edits,
     with_filter,
     zwidth_region,
+    zwidth_region_result,
 )
 from .identify import (
     BodeData,
     IdentifyResult,
     RobustDesigns,
+    RobustRequest,
     bode_data,
     fit_curves,
     identify_chain,
@@ -108,7 +130,7 @@ __all__ = [
     "DESIGN_KEYS", "HEADLINE_KEYS", "Headline", "designs", "headline",
     "DESIGN_CHART", "EXACT_CHART", "MAP_POINTS", "ChartResult", "delays", "design_chart", "design_radius", "exact_chart",
     "exact_limit", "feasible_damping", "map_arguments", "map_params", "map_point", "max_stiffness", "min_mass",
-    "scenario_matches", "simulation", "simulation_section", "stability", "stability_map",
+    "scenario_matches", "simulation", "simulation_section", "stability", "stability_map_result",
     "DEFAULT_BC", "OBSERVER_W", "WallAdmittances", "WallPoint", "WallTradeoff", "admittance_grid",
     "observer_coupling", "observer_response", "observer_settings", "observer_step", "wall_admittances",
     "wall_design", "wall_point", "wall_settings", "wall_step", "wall_tradeoff",
@@ -118,7 +140,13 @@ __all__ = [
     "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements",
     "OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "filter_optimum", "noise_options", "optimum_kind",
     "profile_trials",
-    "region_b", "trial_score", "twoport_limit", "wall_edits", "region_wall", "with_filter", "zwidth_region",
+    "region_b", "trial_score", "twoport_limit", "wall_edits", "region_wall", "with_filter", "zwidth_region_result",
     "profile_filter",
     "REFERENCES", "Reference", "citation_text",
+    # the requests: what each computation depends on (the compute graph's cache keys)
+    "DeviceRequest", "StabilityRequest", "ChartRequest", "LoopRequest", "MapRequest", "PointRequest",
+    "ExactChartRequest", "ExactLimitRequest", "SimulationRequest", "WallRequest", "WallAtRequest",
+    "TwoAxisRequest", "TwoAxisStepRequest", "ZWidthRequest", "OptimumRequest", "TrialsRequest", "RobustRequest",
+    # deprecated aliases, for one release: analysis.sampled's functions of these names are other things
+    "stability_map", "zwidth_region",
 ]

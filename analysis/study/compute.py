@@ -16,28 +16,37 @@ import numpy as np
 
 from analysis.chain.limits import MAX_CHART_POINTS, MAX_MAP_POINTS, check_count
 from analysis.profiles.model import Profile
-from analysis.profiles.sections import SimulationSection
 from analysis.sampled import (
     HANDS_OFF,
     RIGID_GRASP,
-    SCENARIOS,
     CriticalChart,
     CriticalMassChart,
-    SimulationOptions,
-    Scenario,
     SimulationResult,
     StabilityMap,
     critical_mass,
     critical_mass_chart,
     critical_stiffness,
     critical_stiffness_chart,
-    scenario,
     simulate,
 )
 from analysis.sampled import stability_map as sampled_stability_map
 from analysis.sampled.terminations import PAPER_WALL_STIFFNESS
-from analysis.study.displays import DisplayKind, display_kind, profile_filter
+from analysis.study.displays import DeviceRequest, DisplayKind, display_kind
+from analysis.study.requests import (
+    ChartRequest,
+    ExactChartRequest,
+    ExactLimitRequest,
+    LoopRequest,
+    MapRequest,
+    PointRequest,
+    SimulationRequest,
+    StabilityRequest,
+    delays,
+    scenario_matches,
+    simulation_section,
+)
 from analysis.twoport.admittance import AdmittanceDisplay
+from analysis.twoport.display_base import DisplayBase
 from analysis.twoport.impedance import ImpedanceDisplay
 from analysis.twoport.results import (
     Cancelled,
@@ -53,7 +62,8 @@ from analysis.twoport.results import (
 __all__ = ["ChartResult", "DESIGN_CHART", "EXACT_CHART", "MAP_POINTS", "stability", "max_stiffness",
            "feasible_damping", "min_mass", "design_chart", "exact_chart", "exact_limit", "simulation_section",
            "scenario_matches",
-           "delays", "map_params", "map_arguments", "stability_map", "map_point", "design_radius", "simulation"]
+           "delays", "map_params", "map_arguments", "stability_map_result", "stability_map", "map_point", "design_radius",
+           "simulation"]
 
 #: the design chart's grid: b_c (impedance) or m_c (admittance) ranges and points per chart
 DESIGN_CHART = {"bc_range": (1.0, 1e4), "mc_range": (1e-3, 1e3), "points": 40}
@@ -71,93 +81,87 @@ class ChartResult:
     chart: StiffnessChart | MassChart
 
 
-def stability(profile: Profile, refine: bool = True) -> StabilityResult:
-    """Eq. (9) or (21) at the profile's coupling, for the profile's display."""
-    return display_kind(profile).evaluate(profile, refine=refine)
+def stability(request: StabilityRequest | Profile, refine: bool = True, display: DisplayBase | None = None
+              ) -> StabilityResult:
+    """Eq. (9) or (21) at the coupling (``display``: the request's built display object, to reuse
+    its cache; a fresh one otherwise)."""
+    req = StabilityRequest.of(request) if isinstance(request, Profile) else request
+    disp = req.model.build() if display is None else display
+    return disp.evaluate(*req.coupling, refine=refine)
 
 
-def max_stiffness(profile: Profile) -> StiffnessDesign:
-    """The largest k_c satisfying eq. (9) at the profile's b_c."""
-    return ImpedanceDisplay(profile.device, velocity_filter=profile_filter(profile)).max_stiffness(profile.bc)
+def max_stiffness(request: DeviceRequest | Profile, bc: float | None = None) -> StiffnessDesign:
+    """The largest k_c satisfying eq. (9) at ``bc`` (a profile: its impedance device model and b_c)."""
+    if isinstance(request, Profile):
+        request, bc = DeviceRequest.of(request, "impedance"), request.bc if bc is None else bc
+    disp = request.build()
+    assert isinstance(disp, ImpedanceDisplay)
+    return disp.max_stiffness(float(bc))  # type: ignore[arg-type]
 
 
 def feasible_damping(profile: Profile) -> DampingInterval:
     """The b_c interval satisfying eq. (21) at the profile's m_c."""
-    return AdmittanceDisplay(profile.device, profile.kp, profile.kd, velocity_filter=profile_filter(profile)).feasible_damping(profile.mc)
+    disp = DeviceRequest.of(profile, "admittance").build()
+    assert isinstance(disp, AdmittanceDisplay)
+    return disp.feasible_damping(profile.mc)
 
 
-def min_mass(profile: Profile) -> MassDesign | None:
-    """The smallest m_c for which some b_c satisfies eq. (21); ``None`` when none is found."""
+def min_mass(request: DeviceRequest | Profile) -> MassDesign | None:
+    """The smallest m_c for which some b_c satisfies eq. (21) (the admittance device model);
+    ``None`` when none is found."""
+    req = DeviceRequest.of(request, "admittance") if isinstance(request, Profile) else request
+    disp = req.build()
+    assert isinstance(disp, AdmittanceDisplay)
     try:
-        return AdmittanceDisplay(profile.device, profile.kp, profile.kd, velocity_filter=profile_filter(profile)).min_mass()
+        return disp.min_mass()
     except ValueError:
         return None
 
 
-def design_chart(profile: Profile, kind: DisplayKind | str | None = None, *, bc_range: tuple[float, float] = DESIGN_CHART["bc_range"],
+def design_chart(request: ChartRequest | Profile, kind: DisplayKind | str | None = None, *,
+                 bc_range: tuple[float, float] = DESIGN_CHART["bc_range"],
                  mc_range: tuple[float, float] = DESIGN_CHART["mc_range"], points: int = DESIGN_CHART["points"],
                  progress: Progress | None = None, cancelled: Cancelled | None = None) -> ChartResult | None:
-    """The design chart of the profile's display (or ``kind``): the largest k_c over b_c
-    (eq. 9), or the feasible b_c interval over m_c (eq. 21), on a geometric grid."""
-    kind = display_kind(profile if kind is None else kind)
-    check_count("chart points", int(points), MAX_CHART_POINTS)
-    disp = kind.build(profile)
+    """The design chart of the display (a profile: its display, or ``kind``, on the given grid):
+    the largest k_c over b_c (eq. 9), or the feasible b_c interval over m_c (eq. 21), on a
+    geometric grid."""
+    req = (ChartRequest.of(request, kind, bc_range=bc_range, mc_range=mc_range, points=points)
+           if isinstance(request, Profile) else request)
+    check_count("chart points", req.points, MAX_CHART_POINTS)
+    disp = req.model.build()
+    grid = np.geomspace(*req.grid, req.points)
     if isinstance(disp, ImpedanceDisplay):
-        chart: Any = disp.stiffness_chart(np.geomspace(*bc_range, int(points)), progress=progress,
-                                          cancelled=cancelled)
+        chart: Any = disp.stiffness_chart(grid, progress=progress, cancelled=cancelled)
     else:
         assert isinstance(disp, AdmittanceDisplay)
-        chart = disp.mass_chart(np.geomspace(*mc_range, int(points)), progress=progress, cancelled=cancelled)
-    return None if chart is None else ChartResult(kind.name, chart)
+        chart = disp.mass_chart(grid, progress=progress, cancelled=cancelled)
+    return None if chart is None else ChartResult(req.model.display, chart)
 
 
-def scenario_matches(profile: Profile, sc: Scenario) -> bool:
-    """False for the paper's worst case of the *other* display (e.g. ``impedance_worst_case``, a
-    penalty wall, on an admittance display); any other scenario is the user's choice and matches."""
-    own = f"{display_kind(profile).name}_worst_case"
-    return not (sc.name.endswith("_worst_case") and sc.name in SCENARIOS and sc.name != own)
-
-
-def simulation_section(profile: Profile) -> SimulationSection:
-    """What the Sampled-data tab simulates: the profile's simulation section, its scenario following
-    the display (:func:`scenario_matches`: the other display's worst case becomes this display's,
-    the options kept), or, without a section, ideal sensors and the paper's worst case for its display."""
-    own = scenario(f"{display_kind(profile).name}_worst_case")
-    if profile.simulation is None:
-        return SimulationSection(options=SimulationOptions(), scenario=own)
-    if scenario_matches(profile, profile.simulation.scenario):
-        return profile.simulation
-    return SimulationSection(options=profile.simulation.options, scenario=own)
-
-
-def delays(profile: Profile) -> tuple[int, bool]:
-    """``(delay_samples, implementation_delay)`` of the profile's simulation section."""
-    o = simulation_section(profile).options
-    return o.delay_samples, o.implementation_delay
-
-
-def exact_chart(profile: Profile, *, bc_range: tuple[float, float] = EXACT_CHART["bc_range"],
+def exact_chart(request: ExactChartRequest | Profile, *, bc_range: tuple[float, float] = EXACT_CHART["bc_range"],
                 points: int = EXACT_CHART["points"], progress: Progress | None = None,
                 cancelled: Cancelled | None = None) -> CriticalChart | CriticalMassChart | None:
     """The exact sampled-data limit over b_c: the largest stable k_c (impedance) or the
-    smallest stable m_c (admittance) of the real loop, with the profile's delays."""
-    bcs = np.geomspace(*bc_range, check_count("chart points", int(points), MAX_CHART_POINTS))
-    d, impl = delays(profile)
-    if display_kind(profile).is_impedance:
-        return critical_stiffness_chart(profile.device, bcs, d, implementation_delay=impl, progress=progress,
-                                        cancelled=cancelled, velocity_filter=profile_filter(profile))
-    return critical_mass_chart(profile.device, bcs, (profile.kp, profile.kd), d, implementation_delay=impl,
-                               progress=progress, cancelled=cancelled, velocity_filter=profile_filter(profile))
+    smallest stable m_c (admittance) of the real loop, with its delays."""
+    req = ExactChartRequest.of(request, bc_range, points) if isinstance(request, Profile) else request
+    bcs = np.geomspace(*req.bc_range, check_count("chart points", req.points, MAX_CHART_POINTS))
+    lp = req.loop
+    if lp.pd is None:
+        return critical_stiffness_chart(lp.device, bcs, lp.delay_samples, implementation_delay=lp.implementation_delay,
+                                        progress=progress, cancelled=cancelled, velocity_filter=lp.velocity_filter)
+    return critical_mass_chart(lp.device, bcs, lp.pd, lp.delay_samples, implementation_delay=lp.implementation_delay,
+                               progress=progress, cancelled=cancelled, velocity_filter=lp.velocity_filter)
 
 
-def exact_limit(profile: Profile) -> float:
-    """The exact limit at the profile's b_c: the largest stable k_c or the smallest stable m_c."""
-    d, impl = delays(profile)
-    if display_kind(profile).is_impedance:
-        return critical_stiffness(profile.device, float(profile.bc), d, implementation_delay=impl,
-                                  velocity_filter=profile_filter(profile))
-    return critical_mass(profile.device, float(profile.bc_adm), (profile.kp, profile.kd), d, implementation_delay=impl,
-                         velocity_filter=profile_filter(profile))
+def exact_limit(request: ExactLimitRequest | Profile) -> float:
+    """The exact limit at b_c: the largest stable k_c or the smallest stable m_c."""
+    req = ExactLimitRequest.of(request) if isinstance(request, Profile) else request
+    lp = req.loop
+    if lp.pd is None:
+        return critical_stiffness(lp.device, req.bc, lp.delay_samples, implementation_delay=lp.implementation_delay,
+                                  velocity_filter=lp.velocity_filter)
+    return critical_mass(lp.device, req.bc, lp.pd, lp.delay_samples, implementation_delay=lp.implementation_delay,
+                         velocity_filter=lp.velocity_filter)
 
 
 def map_params(profile: Profile, axes: tuple[str, str] | None = None) -> dict[str, Any]:
@@ -167,71 +171,82 @@ def map_params(profile: Profile, axes: tuple[str, str] | None = None) -> dict[st
     return {"x": x, "x_range": kind.map_ranges[x], "y": y, "y_range": kind.map_ranges[y], "points": MAP_POINTS}
 
 
-def map_arguments(profile: Profile, params: dict[str, Any]) -> dict[str, Any]:
-    """The keyword arguments of :func:`analysis.sampled.stability_map` for the map ``params``.
+def map_arguments(request: MapRequest | Profile, params: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The keyword arguments of :func:`analysis.sampled.stability_map` for the map (a profile: with
+    the map ``params``).
 
     The termination is the analysis default (impedance: hands-off against the paper's
     500 kN/m penalty wall; admittance: rigid grasp in free motion).
     """
-    n = int(params["points"])
+    req = MapRequest.of(request, params or map_params(request)) if isinstance(request, Profile) else request
+    n, lp = req.points, req.loop
     check_count("map points", n * n, MAX_MAP_POINTS, f"{n} × {n}; at most 400 per axis")
-    d, impl = delays(profile)
-    kind = display_kind(profile)
-    return dict(x=(params["x"], np.geomspace(*params["x_range"], n)),
-                y=(params["y"], np.geomspace(*params["y_range"], n)),
-                display=kind.name, coupling=kind.coupling(profile), pd=(profile.kp, profile.kd), delay_samples=d,
-                implementation_delay=impl, velocity_filter=profile_filter(profile))
+    return dict(x=(req.x, np.geomspace(*req.x_range, n)), y=(req.y, np.geomspace(*req.y_range, n)),
+                display=lp.display, coupling=lp.coupling, pd=lp.pd, delay_samples=lp.delay_samples,
+                implementation_delay=lp.implementation_delay, velocity_filter=lp.velocity_filter)
 
 
-def stability_map(profile: Profile, params: dict[str, Any] | None = None, *, progress: Progress | None = None,
-                  cancelled: Cancelled | None = None) -> StabilityMap | None:
-    """The spectral radius of the exact sampled loop over two parameters (``params``: see
-    :func:`map_params`), in row blocks (one batched sweep each) so that it can report and stop."""
-    args = map_arguments(profile, map_params(profile) if params is None else params)
+def stability_map_result(request: MapRequest | Profile, params: dict[str, Any] | None = None, *,
+                         progress: Progress | None = None, cancelled: Cancelled | None = None) -> StabilityMap | None:
+    """The spectral radius of the exact sampled loop over two parameters (a profile: with the map
+    ``params``, see :func:`map_params`), in row blocks (one batched sweep each) so that it can
+    report and stop.  (:func:`analysis.sampled.stability_map` is the one batched sweep.)"""
+    req = MapRequest.of(request, params or map_params(request)) if isinstance(request, Profile) else request
+    args = map_arguments(req)
     yn, yv = args.pop("y")
     blocks = np.array_split(np.arange(yv.size), min(8, yv.size))
     rows, x_name, x = [], args["x"][0], args["x"][1]
     for i, idx in enumerate(blocks):
         if cancelled is not None and cancelled():
             return None
-        rows.append(sampled_stability_map(profile.device, y=(yn, yv[idx]), **args).spectral_radius)
+        rows.append(sampled_stability_map(req.loop.device, y=(yn, yv[idx]), **args).spectral_radius)
         if progress is not None:
             progress(i + 1, len(blocks))
     return StabilityMap(x_name=x_name, x=x, y_name=yn, y=yv, spectral_radius=np.vstack(rows))
 
 
-def map_point(profile: Profile, x_name: str, y_name: str) -> tuple[float, float | None]:
-    """Where the profile's design sits on a map of ``x_name`` (the coupling's first gain) and
-    ``y_name`` (``None`` when the profile does not fix it)."""
-    kind = display_kind(profile)
-    first, second = kind.coupling(profile)
-    grasp = HANDS_OFF if kind.is_impedance else RIGID_GRASP
-    y = {"kobj": PAPER_WALL_STIFFNESS, "bc": second, "kd": profile.kd, "grasp_mass": grasp.mass,
+def map_point(request: LoopRequest | Profile, x_name: str, y_name: str) -> tuple[float, float | None]:
+    """Where the design sits on a map of ``x_name`` (the coupling's first gain) and ``y_name``
+    (``None`` when the design does not fix it)."""
+    lp = LoopRequest.of(request) if isinstance(request, Profile) else request
+    assert lp.coupling is not None and lp.pd is not None
+    first, second = lp.coupling
+    grasp = HANDS_OFF if lp.kind.is_impedance else RIGID_GRASP
+    y = {"kobj": PAPER_WALL_STIFFNESS, "bc": second, "kd": lp.pd[1], "grasp_mass": grasp.mass,
          "grasp_stiffness": grasp.stiffness}.get(y_name)
     return float(first), (None if y is None else float(y))
 
 
-def design_radius(profile: Profile, x_name: str, y_name: str) -> float | None:
-    """The exact spectral radius of the sampled loop at the current design, on a map of ``x_name``
-    and ``y_name`` (the same loop and termination as :func:`stability_map`, one point: cheap
-    enough to follow a slider drag).  ``None`` when the design is not a point of that map."""
-    x, y = map_point(profile, x_name, y_name)
+def design_radius(request: PointRequest | Profile, x_name: str | None = None, y_name: str | None = None
+                  ) -> float | None:
+    """The exact spectral radius of the sampled loop at the current design, on a map of ``x`` and
+    ``y`` (the same loop and termination as :func:`stability_map_result`, one point: cheap enough
+    to follow a slider drag).  ``None`` when the design is not a point of that map."""
+    req = PointRequest.of(request, str(x_name), str(y_name)) if isinstance(request, Profile) else request
+    x, y = map_point(req.loop, req.x, req.y)
     if y is None or not (x > 0 and y > 0):
         return None
-    args = map_arguments(profile, {"x": x_name, "x_range": (x, x), "y": y_name, "y_range": (y, y), "points": 1})
-    return float(sampled_stability_map(profile.device, **args).spectral_radius[0, 0])
+    args = map_arguments(MapRequest(req.loop, req.x, (x, x), req.y, (y, y), 1))
+    return float(sampled_stability_map(req.loop.device, **args).spectral_radius[0, 0])
 
 
-def simulation(profile: Profile, *, progress: Progress | None = None, cancelled: Cancelled | None = None
-               ) -> SimulationResult | None:
-    """One run of the nonlinear simulator on the profile's scenario.  It has no progress hook of
-    its own: reports 0/1 and 1/1, and a cancel drops the result."""
-    sec = simulation_section(profile)
+def simulation(request: SimulationRequest | Profile, *, progress: Progress | None = None,
+               cancelled: Cancelled | None = None) -> SimulationResult | None:
+    """One run of the nonlinear simulator on the scenario.  It has no progress hook of its own:
+    reports 0/1 and 1/1, and a cancel drops the result."""
+    req = SimulationRequest.of(request) if isinstance(request, Profile) else request
     if progress is not None:
         progress(0, 1)
     if cancelled is not None and cancelled():
         return None
-    res = simulate(profile, sec.scenario, options=sec.options, velocity_filter=profile_filter(profile))
+    lp, sec = req.loop, req.section
+    res = simulate(lp.device, sec.scenario, display=lp.display, coupling=lp.coupling, pd=lp.pd, options=sec.options,
+                   velocity_filter=lp.velocity_filter)
     if progress is not None:
         progress(1, 1)
     return None if cancelled is not None and cancelled() else res
+
+
+#: deprecated alias of :func:`stability_map_result` (one release): :func:`analysis.sampled.stability_map`
+#: is the batched sweep of the same name
+stability_map = stability_map_result

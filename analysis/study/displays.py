@@ -13,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from analysis.chain.device import Device
 from analysis.chain.velocity_filter import VelocityFilter
 from analysis.profiles.model import Profile
 from analysis.twoport.admittance import AdmittanceDisplay
@@ -21,7 +22,8 @@ from analysis.twoport.impedance import ImpedanceDisplay
 from analysis.sampled.results import CriticalChart, CriticalMassChart
 from analysis.twoport.results import MassChart, StabilityResult, StiffnessChart
 
-__all__ = ["Gain", "DisplayKind", "IMPEDANCE", "ADMITTANCE", "DISPLAY_KINDS", "display_kind", "profile_filter"]
+__all__ = ["Gain", "DisplayKind", "IMPEDANCE", "ADMITTANCE", "DISPLAY_KINDS", "display_kind", "profile_filter",
+           "DeviceRequest"]
 
 
 @dataclass(frozen=True)
@@ -64,10 +66,7 @@ class DisplayKind:
     def build(self, profile: Profile) -> DisplayBase:
         """A fresh :class:`ImpedanceDisplay` or :class:`AdmittanceDisplay` of the profile's device,
         with the profile's velocity filter in the coupling (eq. 4's Z_c in eq. 9, K_d in eq. 21)."""
-        vf = profile_filter(profile)
-        if self.is_impedance:
-            return ImpedanceDisplay(profile.device, velocity_filter=vf)
-        return AdmittanceDisplay(profile.device, profile.kp, profile.kd, velocity_filter=vf)
+        return DeviceRequest.of(profile, self).build()
 
     def coupling(self, profile: Profile) -> tuple[float, float]:
         """The coupling gains in ``evaluate()`` order: ``(k_c, b_c)`` or ``(m_c, b_c)``."""
@@ -163,3 +162,35 @@ def profile_filter(profile: Profile) -> VelocityFilter | None:
     if sec is None or sec.velocity_filter.is_backward:
         return None
     return sec.velocity_filter
+
+
+@dataclass(frozen=True)
+class DeviceRequest:
+    """What a display object (the device model) depends on: the display type, the device, the
+    velocity filter and, for the admittance display only, the PD loop's gains (eq. 30).
+
+    The coupling gains are not part of it: moving one reuses the display object and its cache.
+    Equal requests build equal display objects (a cache key)."""
+
+    display: str
+    device: Device
+    velocity_filter: VelocityFilter | None
+    pd: tuple[float, float] | None = None
+
+    @classmethod
+    def of(cls, profile: Profile, kind: DisplayKind | str | None = None) -> DeviceRequest:
+        """The request of ``profile``'s display (or of ``kind``)."""
+        k = display_kind(profile if kind is None else kind)
+        pd = None if k.is_impedance else (float(profile.kp), float(profile.kd))
+        return cls(k.name, profile.device, profile_filter(profile), pd)
+
+    @property
+    def kind(self) -> DisplayKind:
+        return display_kind(self.display)
+
+    def build(self) -> DisplayBase:
+        """A fresh :class:`ImpedanceDisplay` or :class:`AdmittanceDisplay` of the device, with the
+        velocity filter in the coupling (eq. 4's Z_c in eq. 9, K_d in eq. 21)."""
+        if self.pd is None:
+            return ImpedanceDisplay(self.device, velocity_filter=self.velocity_filter)
+        return AdmittanceDisplay(self.device, *self.pd, velocity_filter=self.velocity_filter)

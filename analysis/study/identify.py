@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from analysis.chain.device import Device
 from analysis.identify import (
     ChainFit,
     FitCancelled,
@@ -45,7 +46,7 @@ from analysis.study.displays import display_kind
 from analysis.study.quantities import format_number
 
 __all__ = ["BodeData", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "identify_chain", "load_measurements", "parameter_rows",
-           "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements"]
+           "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements", "RobustRequest"]
 
 Progress = Callable[[int, int], None] | None
 Cancelled = Callable[[], bool] | None
@@ -229,26 +230,48 @@ class RobustDesigns:
         return f"b_c = {format_number(self.coupling)} N·s/m {word} for {box}: robust {limit}"
 
 
-def robust_designs(profile: Profile, *, seed: int = 0, progress: Progress = None,
+@dataclass(frozen=True)
+class RobustRequest:
+    """What the robust design depends on: the display, the device, the identification intervals
+    (not the embedded measurements), the design point (impedance: ``(b_c,)``; admittance:
+    ``(m_c, k_p, k_d)``) and the coupling gain checked against the box (k_c or b_c)."""
+
+    display: str
+    device: Device
+    intervals: tuple[tuple[str, tuple[float, float]], ...]
+    design: tuple[float, ...]
+    coupling: float
+
+    @classmethod
+    def of(cls, profile: Profile) -> RobustRequest:
+        kind = display_kind(profile)
+        sec = profile.identification
+        intervals = () if sec is None else tuple((k, (float(lo), float(hi))) for k, (lo, hi) in sec.intervals.items())
+        if kind.is_impedance:
+            return cls(kind.name, profile.device, intervals, (float(profile.bc),), float(profile.kc))
+        return cls(kind.name, profile.device, intervals, (float(profile.mc), float(profile.kp), float(profile.kd)),
+                   float(profile.bc_adm))
+
+
+def robust_designs(request: RobustRequest | Profile, *, seed: int = 0, progress: Progress = None,
                    cancelled: Cancelled = None) -> RobustDesigns | None:
-    """The robust design of the profile's display over ``profile.identification.intervals``;
-    ``None`` without intervals or when cancelled before the search."""
-    section = profile.identification
-    if section is None or not section.intervals or (cancelled and cancelled()):
+    """The robust design of the display over the identification intervals; ``None`` without
+    intervals or when cancelled before the search."""
+    req = RobustRequest.of(request) if isinstance(request, Profile) else request
+    if not req.intervals or (cancelled and cancelled()):
         return None
-    intervals = dict(section.intervals)
-    kind = display_kind(profile)
-    loose = open_intervals(intervals, profile.device.n)
+    intervals = dict(req.intervals)
+    impedance = display_kind(req.display).is_impedance
+    loose = open_intervals(intervals, req.device.n)
     if loose:
-        coupling = profile.kc if kind.is_impedance else profile.bc_adm
-        return RobustDesigns(kind.is_impedance, intervals, None, None, coupling, False, loose)
-    if kind.is_impedance:
-        rs = robust_max_stiffness(profile.device, profile.bc, intervals, seed=seed)
-        out = RobustDesigns(True, intervals, rs, None, profile.kc, rs.kc is not None and profile.kc <= rs.kc)
+        return RobustDesigns(impedance, intervals, None, None, req.coupling, False, loose)
+    if impedance:
+        rs = robust_max_stiffness(req.device, req.design[0], intervals, seed=seed)
+        out = RobustDesigns(True, intervals, rs, None, req.coupling, rs.kc is not None and req.coupling <= rs.kc)
     else:
-        rd = robust_feasible_damping(profile.device, profile.mc, profile.kp, profile.kd, intervals, seed=seed)
-        ok = rd.low is not None and rd.low <= profile.bc_adm <= rd.high
-        out = RobustDesigns(False, intervals, None, rd, profile.bc_adm, ok)
+        rd = robust_feasible_damping(req.device, *req.design, intervals, seed=seed)
+        ok = rd.low is not None and rd.low <= req.coupling <= rd.high
+        out = RobustDesigns(False, intervals, None, rd, req.coupling, ok)
     if progress:
         progress(1, 1)
     return out

@@ -14,10 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from analysis.chain.device import Device
 from analysis.errors import ValidationError
 from analysis.profiles.model import Profile
 from analysis.study.quantities import format_number
 from analysis.transparency.design import WallDesign
+from analysis.transparency.five_bar import five_bar_preset
 from analysis.transparency.observer import (
     CouplingResponse,
     DisturbanceObserver,
@@ -39,7 +41,8 @@ from analysis.twoport.results import Cancelled, Progress
 __all__ = ["DEFAULT_BC", "PAPER_MASS", "mass_scale", "derived_wall_settings", "default_bc", "wall_device_label",
            "observer_device_label", "OBSERVER_W", "WallTradeoff", "WallPoint", "WallAdmittances", "wall_settings", "wall_design",
            "admittance_grid", "wall_tradeoff", "wall_point", "wall_admittances", "wall_step", "observer_settings",
-           "observer_response", "observer_coupling", "observer_step"]
+           "observer_response", "observer_coupling", "observer_step", "WallRequest", "WallAtRequest",
+           "TwoAxisRequest", "TwoAxisStepRequest"]
 
 DEFAULT_BC = 15.0  # N s/m, the paper's example
 #: The frequency grid of the observer plots (rad/s).
@@ -133,10 +136,33 @@ def wall_device_label(profile: Profile) -> str:
             f"the paper's wall and B_c range scaled by m / 0.01 kg = {format_number(mass_scale(profile), 4)})")
 
 
-def wall_design(profile: Profile) -> WallDesign:
-    """A fresh :class:`WallDesign` for the profile (the device chain only for ``plant = "chain"``)."""
-    st = wall_settings(profile)
-    return WallDesign.from_settings(st, profile.device if st.plant == "chain" else None)
+@dataclass(frozen=True)
+class WallRequest:
+    """What a :class:`WallDesign` depends on: the wall settings and the device chain (only for
+    ``plant = "chain"``; ``None`` otherwise, so a device edit does not touch a rigid-body wall)."""
+
+    settings: WallSettings
+    device: Device | None
+
+    @classmethod
+    def of(cls, profile: Profile) -> WallRequest:
+        st = wall_settings(profile)
+        return cls(st, profile.device if st.plant == "chain" else None)
+
+
+@dataclass(frozen=True)
+class WallAtRequest:
+    """A wall result at one controller damping B_c (N s/m)."""
+
+    wall: WallRequest
+    bc: float
+
+
+def wall_design(request: WallRequest | Profile) -> WallDesign:
+    """A fresh :class:`WallDesign` (a profile: of its wall settings, the device chain only for
+    ``plant = "chain"``)."""
+    req = WallRequest.of(request) if isinstance(request, Profile) else request
+    return WallDesign.from_settings(req.settings, req.device)
 
 
 def admittance_grid(st: WallSettings, points: int = 600) -> np.ndarray:
@@ -146,10 +172,10 @@ def admittance_grid(st: WallSettings, points: int = 600) -> np.ndarray:
     return np.geomspace(min(1.0, hi / 100.0), hi, points)
 
 
-def wall_tradeoff(profile: Profile, *, progress: Progress | None = None, cancelled: Cancelled | None = None
-                  ) -> WallTradeoff | None:
+def wall_tradeoff(request: WallRequest | Profile, *, progress: Progress | None = None,
+                  cancelled: Cancelled | None = None) -> WallTradeoff | None:
     """J(B_c) and ‖L‖∞(B_c) (Fig. 8) and the robust optimum; ``None`` once cancelled."""
-    design = wall_design(profile)  # its own object: never shared across threads
+    design = wall_design(request)  # its own object: never shared across threads
     if progress is not None:
         progress(0, 2)
     curves = design.tradeoff()
@@ -200,18 +226,52 @@ def observer_device_label(profile: Profile) -> str:
             f"{format_number(st.nominal_damping, 4)}) from {where}; two axes: the five-bar preset '{st.preset}'")
 
 
-def observer_response(profile: Profile) -> ObserverResponse:
-    """The effective plant through the observer (eq. 2-5) on :data:`OBSERVER_W`."""
-    st = observer_settings(profile)
+@dataclass(frozen=True)
+class TwoAxisRequest:
+    """What the two-axis observer depends on: the five-bar preset and the Q filter (order, cut-off)."""
+
+    preset: str
+    order: int
+    cutoff: float
+
+    @classmethod
+    def of(cls, profile: Profile) -> TwoAxisRequest:
+        st = observer_settings(profile)
+        return cls(st.preset, st.order, st.cutoff)
+
+    def build(self) -> TwoAxisObserver:
+        M, B, _, _ = five_bar_preset(self.preset)
+        return TwoAxisObserver(M, B, self.order, self.cutoff)
+
+
+@dataclass(frozen=True)
+class TwoAxisStepRequest:
+    """The two-axis observer and the commanded force step (N, s)."""
+
+    observer: TwoAxisRequest
+    step_force: float
+    step_duration: float
+
+    @classmethod
+    def of(cls, profile: Profile) -> TwoAxisStepRequest:
+        st = observer_settings(profile)
+        return cls(TwoAxisRequest.of(profile), st.step_force, st.step_duration)
+
+
+def observer_response(request: ObserverSettings | Profile) -> ObserverResponse:
+    """The effective plant through the observer (eq. 2-5) on :data:`OBSERVER_W` (its request is
+    the :func:`observer_settings`)."""
+    st = observer_settings(request) if isinstance(request, Profile) else request
     return DisturbanceObserver.from_settings(st).response(OBSERVER_W, None, st.alpha, st.beta, st.delta)
 
 
-def observer_coupling(profile: Profile) -> CouplingResponse:
+def observer_coupling(request: TwoAxisRequest | Profile) -> CouplingResponse:
     """The cross-axis coupling ``|v_y/F_x|`` of the two-axis device with and without the observers."""
-    return TwoAxisObserver.from_settings(observer_settings(profile)).coupling(OBSERVER_W)
+    req = TwoAxisRequest.of(request) if isinstance(request, Profile) else request
+    return req.build().coupling(OBSERVER_W)
 
 
-def observer_step(profile: Profile) -> TwoAxisStep:
+def observer_step(request: TwoAxisStepRequest | Profile) -> TwoAxisStep:
     """The y answer to a commanded force step on x."""
-    st = observer_settings(profile)
-    return TwoAxisObserver.from_settings(st).step_response(st.step_force, st.step_duration)
+    req = TwoAxisStepRequest.of(request) if isinstance(request, Profile) else request
+    return req.observer.build().step_response(req.step_force, req.step_duration)

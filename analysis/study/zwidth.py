@@ -21,12 +21,14 @@ When the profile's controller section names an ``encoder_resolution`` (and optio
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
+from analysis.chain.device import Device
 from analysis.chain.velocity_filter import VelocityFilter
 from analysis.profiles.controller import ControllerSection
 from analysis.profiles.model import Profile
@@ -40,13 +42,13 @@ from analysis.sampled import (
     score_trials,
 )
 from analysis.sampled import zwidth_region as sampled_zwidth_region
-from analysis.study.compute import delays
+from analysis.study.requests import delays
 from analysis.study.displays import profile_filter
 from analysis.twoport.impedance import ImpedanceDisplay
 from analysis.twoport.results import Cancelled, Progress
 
 __all__ = ["OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "region_b", "noise_options", "twoport_limit",
-           "zwidth_region",
+           "zwidth_region", "zwidth_region_result", "ZWidthRequest", "OptimumRequest", "TrialsRequest",
            "filter_optimum", "optimum_kind", "profile_trials", "trial_score", "wall_edits", "region_wall", "with_filter"]
 
 #: Number of cut-offs of the optimum curve (issue 15: 30 in <= 10 s on the worker).
@@ -79,10 +81,58 @@ def noise_options(profile: Profile) -> dict[str, float | None]:
     return {"encoder_resolution": sec.encoder_resolution, "force_noise": sec.force_noise}
 
 
-def twoport_limit(profile: Profile) -> Callable[[np.ndarray], np.ndarray]:
+@dataclass(frozen=True)
+class ZWidthRequest:
+    """What the (B, K) region depends on: the device, the velocity filter, the B grid
+    (``b_range``, ``b_points``), the noise criterion and the delays -- not the wall's gains."""
+
+    device: Device
+    velocity_filter: VelocityFilter | None
+    b_range: tuple[float, float]
+    b_points: int
+    encoder_resolution: float | None
+    force_noise: float | None
+    delay_samples: int
+    implementation_delay: bool
+
+    @classmethod
+    def of(cls, profile: Profile) -> ZWidthRequest:
+        sec = controller_section(profile)
+        d, impl = delays(profile)
+        return cls(profile.device, profile_filter(profile), tuple(sec.b_range), int(sec.b_points),
+                   sec.encoder_resolution, sec.force_noise, int(d), bool(impl))
+
+    @property
+    def b(self) -> np.ndarray:
+        """The region's B values (N s/m)."""
+        return np.geomspace(self.b_range[0], self.b_range[1], self.b_points)
+
+    @property
+    def noise(self) -> dict[str, float | None]:
+        return {"encoder_resolution": self.encoder_resolution, "force_noise": self.force_noise}
+
+
+@dataclass(frozen=True)
+class OptimumRequest:
+    """What the optimum cut-off depends on: the region's request without its filter (the cut-off is
+    swept), the filter kind optimized and the cut-offs (``None``: the default grid)."""
+
+    region: ZWidthRequest
+    kind: str
+    cutoffs: tuple[float, ...] | None = None
+
+    @classmethod
+    def of(cls, profile: Profile, kind: str | None = None, cutoffs: np.ndarray | None = None) -> OptimumRequest:
+        region = dataclasses.replace(ZWidthRequest.of(profile), velocity_filter=None)
+        return cls(region, optimum_kind(profile) if kind is None else kind,
+                   None if cutoffs is None else tuple(float(c) for c in cutoffs))
+
+
+def twoport_limit(request: ZWidthRequest | Profile) -> Callable[[np.ndarray], np.ndarray]:
     """Eq. (9)'s edge: ``b -> largest k_c`` of ``ImpedanceDisplay(device, velocity_filter=f)``
     (NaN where eq. 9 has no feasible k_c)."""
-    disp = ImpedanceDisplay(profile.device, velocity_filter=profile_filter(profile))
+    req = ZWidthRequest.of(request) if isinstance(request, Profile) else request
+    disp = ImpedanceDisplay(req.device, velocity_filter=req.velocity_filter)
 
     def limit(b: np.ndarray) -> np.ndarray:
         return np.asarray(disp.stiffness_chart(np.asarray(b, float)).kc, float)
@@ -90,18 +140,19 @@ def twoport_limit(profile: Profile) -> Callable[[np.ndarray], np.ndarray]:
     return limit
 
 
-def zwidth_region(profile: Profile, *, progress: Progress | None = None,
-                  cancelled: Cancelled | None = None) -> ZWidthRegion | None:
-    """The exact (B, K) region of the profile's wall with its filter and delays, the passive
-    region and eq. (9)'s limit.  One piece: reports 0/1 and 1/1; ``None`` once cancelled."""
+def zwidth_region_result(request: ZWidthRequest | Profile, *, progress: Progress | None = None,
+                         cancelled: Cancelled | None = None) -> ZWidthRegion | None:
+    """The exact (B, K) region of the wall with its filter and delays, the passive region and
+    eq. (9)'s limit (:func:`analysis.sampled.zwidth_region` is the sampled layer's computation).
+    One piece: reports 0/1 and 1/1; ``None`` once cancelled."""
+    req = ZWidthRequest.of(request) if isinstance(request, Profile) else request
     if progress is not None:
         progress(0, 1)
     if cancelled is not None and cancelled():
         return None
-    d, impl = delays(profile)
-    r = sampled_zwidth_region(profile.device, region_b(profile), d, profile_filter(profile),
-                              implementation_delay=impl, twoport_limit=twoport_limit(profile),
-                              **noise_options(profile))
+    r = sampled_zwidth_region(req.device, req.b, req.delay_samples, req.velocity_filter,
+                              implementation_delay=req.implementation_delay, twoport_limit=twoport_limit(req),
+                              **req.noise)
     if progress is not None:
         progress(1, 1)
     return None if cancelled is not None and cancelled() else r
@@ -113,21 +164,41 @@ def optimum_kind(profile: Profile) -> str:
     return "lowpass1" if vf.is_backward else vf.kind
 
 
-def filter_optimum(profile: Profile, kind: str | None = None, *, cutoffs: np.ndarray | None = None,
+def filter_optimum(request: OptimumRequest | Profile, kind: str | None = None, *, cutoffs: np.ndarray | None = None,
                    progress: Progress | None = None, cancelled: Cancelled | None = None) -> FilterOptimum | None:
     """The region's linear area against the cut-off (default 30 from 5 Hz to 0.9 Nyquist) and the
     maximizing cut-off (Chawda et al.), for ``kind`` (default :func:`optimum_kind`)."""
-    d, impl = delays(profile)
-    return optimal_filter(profile.device, optimum_kind(profile) if kind is None else kind, cutoffs,
-                          b=region_b(profile), delay_samples=d, implementation_delay=impl, progress=progress,
-                          cancelled=cancelled, **noise_options(profile))
+    req = OptimumRequest.of(request, kind, cutoffs) if isinstance(request, Profile) else request
+    r = req.region
+    return optimal_filter(r.device, req.kind, None if req.cutoffs is None else np.asarray(req.cutoffs), b=r.b,
+                          delay_samples=r.delay_samples, implementation_delay=r.implementation_delay,
+                          progress=progress, cancelled=cancelled, **r.noise)
 
 
-def profile_trials(profile: Profile, base: str | os.PathLike | None = None) -> MeasuredTrials | None:
+@dataclass(frozen=True)
+class TrialsRequest:
+    """The trials file named by the controller section and its modification time (a rewritten
+    file is read again); ``path`` ``None`` without a file."""
+
+    path: str | None
+    mtime_ns: int | None = None
+
+    @classmethod
+    def of(cls, profile: Profile) -> TrialsRequest:
+        path = controller_section(profile).trials
+        if path is None:
+            return cls(None)
+        try:
+            return cls(path, os.stat(path).st_mtime_ns)
+        except OSError:
+            return cls(path, None)
+
+
+def profile_trials(profile: TrialsRequest | Profile, base: str | os.PathLike | None = None) -> MeasuredTrials | None:
     """The trials file named by the profile's section (relative to ``base`` when given), or ``None``.
 
     Raises :class:`~analysis.errors.ValidationError` for an unreadable or malformed file."""
-    path = controller_section(profile).trials
+    path = (TrialsRequest.of(profile) if isinstance(profile, Profile) else profile).path
     if path is None:
         return None
     if base is not None and not os.path.isabs(path):
@@ -155,3 +226,8 @@ def region_wall(profile: Profile) -> tuple[float, float]:
 def with_filter(profile: Profile, velocity_filter: VelocityFilter) -> Profile:
     """The profile with its controller section's filter replaced (the section created if absent)."""
     return profile.replace(controller=controller_section(profile).replace(velocity_filter=velocity_filter))
+
+
+#: deprecated alias of :func:`zwidth_region_result` (one release): :func:`analysis.sampled.zwidth_region`
+#: is the sampled layer's computation of the same name
+zwidth_region = zwidth_region_result

@@ -1,11 +1,14 @@
-"""A lazy computation graph over the model, cached by its inputs.
+"""A lazy computation graph over the model, cached by what each node computes.
 
-Each :class:`Node` names the model fields it reads (``inputs``) and a ``key`` function that
-reduces the profile to exactly what the result depends on.  A model field change marks the nodes
-that read it dirty and emits :attr:`ComputeGraph.invalidated`; nothing is computed until a visible
-view *pulls* a node with :meth:`ComputeGraph.get` (synchronous) or :meth:`ComputeGraph.request`
-(asynchronous nodes run on the :class:`~app.core.worker.TaskRunner`).  A pull whose key equals the
-cached key returns the cached value, so ``calls`` counts real computations only.
+Each :class:`Node` names the model fields it reads (``inputs``) and a ``request`` function that
+builds, from the profile and the node's parameters, the frozen request of its study computation
+(:mod:`analysis.study.requests`: exactly the inputs the computation uses).  The node's function
+receives that request, never the profile, so the cache key cannot miss an input.  A model field
+change marks the nodes that read it dirty and emits :attr:`ComputeGraph.invalidated`; nothing is
+computed until a visible view *pulls* a node with :meth:`ComputeGraph.get` (synchronous) or
+:meth:`ComputeGraph.request` (asynchronous nodes run on the :class:`~app.core.worker.TaskRunner`).
+A pull whose request equals the cached one returns the cached value, so ``calls`` counts real
+computations only.
 
 A slider drag (:meth:`ComputeGraph.set_interactive`, fed by the editor's drag tokens) holds back
 the nodes registered with ``live=False`` -- the expensive ones, such as the sampled-data map and
@@ -50,15 +53,17 @@ CONFIRM_MS = 50
 class Node:
     """One cached computation.
 
-    ``func(profile, pull)`` computes the value (``pull(name)`` gets another node's value);
-    asynchronous nodes instead have ``func(profile, params, progress, cancelled)`` and run on the
-    worker with an immutable snapshot of the profile.  ``live=False`` marks an expensive node that
-    is not recomputed while a slider drag moves (see :meth:`ComputeGraph.set_interactive`).
+    ``request(profile, params)`` builds the node's request (its cache key: a hashable, immutable
+    value of exactly what it computes from); ``func(request, pull)`` computes the value
+    (``pull(name)`` gets another node's value); asynchronous nodes instead have
+    ``func(request, progress, cancelled)`` and run on the worker with that immutable request.
+    ``live=False`` marks an expensive node that is not recomputed while a slider drag moves
+    (see :meth:`ComputeGraph.set_interactive`).
     """
 
     name: str
     inputs: frozenset[str]
-    key: Callable[[Profile, dict], Hashable]
+    request: Callable[[Profile, dict], Hashable]
     func: Callable[..., Any]
     asynchronous: bool = False
     params: dict = field(default_factory=dict)
@@ -69,6 +74,11 @@ class Node:
     pending_key: Any = _NOTHING
     live: bool = True
     waiting: bool = False  # held back by a moving drag, to be computed when it pauses or ends
+
+    @property
+    def key(self) -> Callable[[Profile, dict], Hashable]:
+        """The request function under its former name (deprecated alias, one release)."""
+        return self.request
 
 
 class DragPause(QObject):
@@ -134,7 +144,7 @@ class DragPause(QObject):
 
 
 class ComputeGraph(QObject):
-    """Nodes cached by input keys, invalidated by model field signals, pulled on demand."""
+    """Nodes cached by their requests, invalidated by model field signals, pulled on demand."""
 
     invalidated = Signal(object)  # set of node names that became dirty
     ready = Signal(str)  # an asynchronous node has a fresh value
@@ -189,7 +199,7 @@ class ComputeGraph(QObject):
     def set_params(self, name: str, **changes: Any) -> bool:
         """Change some of the node's parameters; the node is dirty if any value changed.
 
-        Returns whether anything changed.  Nothing is computed: the next pull sees the new key.
+        Returns whether anything changed.  Nothing is computed: the next pull sees the new request.
         """
         node = self._nodes[name]
         unknown = set(changes) - set(node.params)
@@ -217,7 +227,7 @@ class ComputeGraph(QObject):
     def replace_function(self, name: str, func: Callable[..., Any]) -> Callable[..., Any]:
         """Compute ``name`` with ``func`` from its next computation on (instrumentation, tests).
 
-        The cached value stays valid until the node's key changes.  Returns the old function.
+        ``func`` takes the node's request; the cached value stays until the request changes (returns the old one).
         """
         node = self._nodes[name]
         old, node.func = node.func, func
@@ -295,8 +305,9 @@ class ComputeGraph(QObject):
 
     # -- pulling ---------------------------------------------------------------------------------
     def key_of(self, name: str) -> Hashable:
+        """The request ``name`` computes now (its cache key)."""
         node = self._nodes[name]
-        return node.key(self.model.profile, node.params)
+        return node.request(self.model.profile, node.params)
 
     def is_fresh(self, name: str) -> bool:
         node = self._nodes[name]
@@ -307,18 +318,18 @@ class ComputeGraph(QObject):
         return node.value_key == self.key_of(name)
 
     def get(self, name: str, hold: bool = True) -> Any:
-        """A synchronous node's value, computed if its key changed (``live=False``: held in a drag unless not ``hold``)."""
+        """A synchronous node's value, computed if its request changed (``live=False``: held in a drag unless not ``hold``)."""
         node = self._nodes[name]
         if node.asynchronous:
             raise TypeError(f"{name} is asynchronous: use request()")
         if not node.dirty and node.value_key is not _NOTHING:
             return node.value
-        key = node.key(self.model.profile, node.params)
+        key = node.request(self.model.profile, node.params)
         if key != node.value_key:
             if hold and not node.live and self.holding and node.value_key is not _NOTHING:
                 return self._hold(node, key)  # stays dirty: computed when the drag pauses or ends
             node.calls, node.waiting = node.calls + 1, False
-            node.value, node.value_key = node.func(self.model.profile, self.get), key
+            node.value, node.value_key = node.func(key, self.get), key
         node.dirty = False
         return node.value
 
@@ -331,7 +342,7 @@ class ComputeGraph(QObject):
         node = self._nodes[name]
         if not node.asynchronous:
             return self.get(name)
-        key = node.key(self.model.profile, node.params)
+        key = node.request(self.model.profile, node.params)
         if key == node.value_key:
             node.dirty = False
             node.waiting = False
@@ -342,10 +353,9 @@ class ComputeGraph(QObject):
         if key != node.pending_key or not self.runner.is_running(name):
             node.calls += 1
             node.pending_key = key
-            profile, params = self.model.profile, dict(node.params)
 
             def job(progress: Callable[[int, int], None], cancelled: Callable[[], bool]) -> Any:
-                return key, node.func(profile, params, progress, cancelled)
+                return key, node.func(key, progress, cancelled)
 
             self.runner.submit(name, job)
             self.started.emit(name)
@@ -365,7 +375,7 @@ class ComputeGraph(QObject):
         if value is None:  # the job stopped early
             return
         node.value, node.value_key, node.pending_key = value, key, _NOTHING
-        node.dirty = key != node.key(self.model.profile, node.params)
+        node.dirty = key != node.request(self.model.profile, node.params)
         self.ready.emit(name)
 
     @Slot(str, int, int)

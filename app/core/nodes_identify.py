@@ -10,11 +10,10 @@
 
 from __future__ import annotations
 
-from collections.abc import Hashable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 
 from analysis.identify import Measurement
-from analysis.profiles.io import Profile
-from analysis.study import IdentifyResult, RobustDesigns, identify_chain, robust_designs
+from analysis.study import IdentifyResult, RobustDesigns, RobustRequest, identify_chain, robust_designs
 
 from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress
 from app.core.model import DEVICE_FIELDS
@@ -36,11 +35,23 @@ def fit_params(run: int, measurements: Sequence[Measurement], n_masses: int, fix
             "sample_time": sample_time, "band_min": band_min}
 
 
-def _fit_key(p: Profile, params: dict) -> Hashable:
-    return params.get("run", 0)
+class FitRequest:
+    """One fit request: the node parameters, compared by their run number only (each request the
+    user makes is a new computation; the measurements are not hashed)."""
+
+    def __init__(self, params: dict) -> None:
+        self.params = dict(params)
+        self.run = params.get("run", 0)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, FitRequest) and other.run == self.run
+
+    def __hash__(self) -> int:
+        return hash(self.run)
 
 
-def _fit(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> IdentifyResult | None:
+def _fit(req: FitRequest, progress: Progress, cancelled: Cancelled) -> IdentifyResult | None:
+    params = req.params
     if not params.get("measurements"):
         return None
     return identify_chain(params["measurements"], params["n_masses"], params["fixed"], params["ground"],
@@ -48,22 +59,19 @@ def _fit(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> 
                           band_min=params["band_min"], progress=progress, cancelled=cancelled)
 
 
-def _robust_key(p: Profile, params: dict) -> Hashable:
-    return p.device.key(), p.display, p.kc, p.bc, p.mc, p.bc_adm, p.kp, p.kd, p.identification
-
-
-def _robust(p: Profile, params: dict, progress: Progress,
+def _robust(req: RobustRequest, progress: Progress,
             cancelled: Cancelled) -> tuple[RobustDesigns | None] | None:
     """``(designs,)`` -- ``(None,)`` for a profile without intervals -- or ``None`` when cancelled
     (the graph reads a bare ``None`` as "stopped early")."""
-    designs = robust_designs(p, progress=progress, cancelled=cancelled)
+    designs = robust_designs(req, progress=progress, cancelled=cancelled)
     return None if cancelled() else (designs,)
 
 
 def register(graph: ComputeGraph) -> None:
     """Add the Identify tab's nodes to ``graph`` (once)."""
     if FIT_NODE not in graph:
-        graph.add(Node(FIT_NODE, frozenset(), _fit_key, _fit, asynchronous=True,
+        graph.add(Node(FIT_NODE, frozenset(), lambda p, params: FitRequest(params), _fit, asynchronous=True,
                        params=fit_params(0, (), 4, {}, None, None, None, 1.0)))
     if ROBUST_NODE not in graph:
-        graph.add(Node(ROBUST_NODE, _ROBUST_INPUTS, _robust_key, _robust, asynchronous=True, live=False))
+        graph.add(Node(ROBUST_NODE, _ROBUST_INPUTS, lambda p, _: RobustRequest.of(p), _robust, asynchronous=True,
+                       live=False))

@@ -12,11 +12,18 @@ the Q order and its cutoff (and the step).
 
 from __future__ import annotations
 
-from collections.abc import Hashable
 from typing import Any
 
 from analysis.profiles.io import Profile
-from analysis.study import OBSERVER_W, observer_coupling, observer_response, observer_settings, observer_step
+from analysis.study import (
+    OBSERVER_W,
+    TwoAxisRequest,
+    TwoAxisStepRequest,
+    observer_coupling,
+    observer_response,
+    observer_settings,
+    observer_step,
+)
 
 from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress
 from app.core.model import DEVICE_FIELDS
@@ -30,26 +37,22 @@ HELD_NODES = ("observer_coupling", "observer_step")
 _INPUTS = frozenset({"observer"}) | frozenset(DEVICE_FIELDS)
 
 
-def _two_axis_key(p: Profile, params: dict) -> Hashable:
-    st = observer_settings(p)
-    return st.preset, st.order, st.cutoff
+def _coupling(req: TwoAxisRequest, progress: Progress, cancelled: Cancelled) -> Any:
+    return observer_coupling(req)
 
 
-def _step_key(p: Profile, params: dict) -> Hashable:
-    st = observer_settings(p)
-    return _two_axis_key(p, params), st.step_force, st.step_duration
+def _step(req: TwoAxisStepRequest, progress: Progress, cancelled: Cancelled) -> Any:
+    return observer_step(req)
 
 
-def _coupling(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> Any:
-    return observer_coupling(p)
-
-
-def _step(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> Any:
-    return observer_step(p)
+def _settings_request(p: Profile, params: dict) -> Any:
+    return observer_settings(p)
 
 
 def register(graph: ComputeGraph) -> None:
     """Add the observer's nodes to ``graph``."""
-    graph.add(Node("observer_response", _INPUTS, lambda p, _: observer_settings(p), lambda p, _: observer_response(p)))
-    graph.add(Node("observer_coupling", _INPUTS, _two_axis_key, _coupling, asynchronous=True, live=False))
-    graph.add(Node("observer_step", _INPUTS, _step_key, _step, asynchronous=True, live=False))
+    graph.add(Node("observer_response", _INPUTS, _settings_request, lambda st, _: observer_response(st)))
+    graph.add(Node("observer_coupling", _INPUTS, lambda p, _: TwoAxisRequest.of(p), _coupling, asynchronous=True,
+                   live=False))
+    graph.add(Node("observer_step", _INPUTS, lambda p, _: TwoAxisStepRequest.of(p), _step, asynchronous=True,
+                   live=False))

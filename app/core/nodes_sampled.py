@@ -12,12 +12,12 @@ they catch up when it pauses or ends (:mod:`app.core.compute_graph`).  What foll
 is ``sampled_point``, the exact spectral radius at the current design on the map's axes
 (:func:`analysis.study.design_radius`, one point of the map, about a millisecond).  The delays, the scenario and
 the simulator options are the profile's ``simulation`` section; the map's axes and ranges are node
-parameters (the display object's map definition by default).
+parameters (the display object's map definition by default).  Each node is keyed on its study
+request (:mod:`analysis.study.requests`), built from the profile and those parameters.
 """
 
 from __future__ import annotations
 
-from collections.abc import Hashable
 from typing import Any
 
 import numpy as np
@@ -29,16 +29,20 @@ from analysis.study import (
     DISPLAY_KINDS,
     EXACT_CHART,
     MAP_POINTS,
+    ExactChartRequest,
+    ExactLimitRequest,
+    MapRequest,
+    PointRequest,
+    SimulationRequest,
     delays,
     design_radius,
     display_kind,
     exact_chart,
     exact_limit,
     map_arguments,
-    profile_filter,
     simulation,
     simulation_section,
-    stability_map,
+    stability_map_result,
 )
 
 from analysis.study.labels import PARAMETER_LABELS
@@ -72,18 +76,8 @@ def default_map_settings(display: str) -> dict[str, Any]:
     return {"x": x, "x_range": kind.map_ranges[x], "y": y, "y_range": kind.map_ranges[y], "points": MAP_POINTS}
 
 
-def _pd(p: Profile) -> tuple[float, float] | None:
-    """The PD loop's gains where they matter (admittance display, eq. 30)."""
-    return None if display_kind(p).is_impedance else (p.kp, p.kd)
-
-
-def _map_key(p: Profile, params: dict) -> Hashable:
-    return (p.device.key(), profile_filter(p), p.display, display_kind(p).coupling(p), (p.kp, p.kd), delays(p),
-            tuple(sorted((k, v) for k, v in params.items())))
-
-
-def _map(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> StabilityMap | None:
-    return stability_map(p, dict(params), progress=progress, cancelled=cancelled)
+def _map(req: MapRequest, progress: Progress, cancelled: Cancelled) -> StabilityMap | None:
+    return stability_map_result(req, progress=progress, cancelled=cancelled)
 
 
 def exact_grid(params: dict) -> np.ndarray:
@@ -91,53 +85,35 @@ def exact_grid(params: dict) -> np.ndarray:
     return np.geomspace(*params["bc_range"], int(params["points"]))
 
 
-def _exact_key(p: Profile, params: dict) -> Hashable:
-    return (p.device.key(), profile_filter(p), p.display, _pd(p), delays(p), params["bc_range"], params["points"])
-
-
-def _exact_chart(p: Profile, params: dict, progress: Progress, cancelled: Cancelled
+def _exact_chart(req: ExactChartRequest, progress: Progress, cancelled: Cancelled
                  ) -> CriticalChart | CriticalMassChart | None:
-    return exact_chart(p, bc_range=params["bc_range"], points=int(params["points"]), progress=progress,
-                       cancelled=cancelled)
+    return exact_chart(req, progress=progress, cancelled=cancelled)
 
 
-def _limit_key(p: Profile, params: dict) -> Hashable:
-    return (p.device.key(), profile_filter(p), p.display, display_kind(p).coupling(p)[1], _pd(p), delays(p))
-
-
-def _limit(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> float:
+def _limit(req: ExactLimitRequest, progress: Progress, cancelled: Cancelled) -> float:
     """The exact limit at the current b_c: largest stable k_c or smallest stable m_c."""
     progress(0, 1)
-    v = exact_limit(p)
+    v = exact_limit(req)
     progress(1, 1)
     return v
 
 
-def _sim_key(p: Profile, params: dict) -> Hashable:
-    return (p.device.key(), profile_filter(p), p.display, display_kind(p).coupling(p), (p.kp, p.kd),
-            current_section(p))
-
-
-def _simulation(p: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> SimulationResult | None:
-    return simulation(p, progress=progress, cancelled=cancelled)
-
-
-def _point_key(p: Profile, params: dict) -> Hashable:
-    return (p.device.key(), profile_filter(p), p.display, display_kind(p).coupling(p), (p.kp, p.kd), delays(p),
-            params["x"], params["y"])
+def _simulation(req: SimulationRequest, progress: Progress, cancelled: Cancelled) -> SimulationResult | None:
+    return simulation(req, progress=progress, cancelled=cancelled)
 
 
 def register(graph: ComputeGraph) -> None:
     """Add the four sampled-data nodes (held back during a drag) and the live design point to ``graph``."""
     sim_inputs = DEVICE_INPUTS | GAIN_FIELDS | {"simulation"}
-    graph.add(Node(MAP_NODE, sim_inputs, _map_key, _map, asynchronous=True, live=False,
+    graph.add(Node(MAP_NODE, sim_inputs, MapRequest.of, _map, asynchronous=True, live=False,
                    params=default_map_settings("impedance")))
-    graph.add(Node(EXACT_NODE, DEVICE_INPUTS | {"display", "kp", "kd", "simulation"}, _exact_key, _exact_chart,
+    graph.add(Node(EXACT_NODE, DEVICE_INPUTS | {"display", "kp", "kd", "simulation"},
+                   lambda p, prm: ExactChartRequest.of(p, prm["bc_range"], prm["points"]), _exact_chart,
                    asynchronous=True, live=False, params={"bc_range": EXACT_BC_RANGE, "points": EXACT_POINTS}))
-    graph.add(Node(LIMIT_NODE, DEVICE_INPUTS | GAIN_FIELDS | {"simulation"}, _limit_key, _limit, asynchronous=True,
+    graph.add(Node(LIMIT_NODE, DEVICE_INPUTS | GAIN_FIELDS | {"simulation"}, lambda p, _: ExactLimitRequest.of(p),
+                   _limit, asynchronous=True, live=False))
+    graph.add(Node(SIM_NODE, sim_inputs, lambda p, _: SimulationRequest.of(p), _simulation, asynchronous=True,
                    live=False))
-    graph.add(Node(SIM_NODE, sim_inputs, _sim_key, _simulation, asynchronous=True, live=False))
     axes = {k: v for k, v in default_map_settings("impedance").items() if k in ("x", "y")}
-    graph.add(Node(POINT_NODE, sim_inputs, _point_key,
-                   lambda p, _pull: design_radius(p, *(graph.params(POINT_NODE)[k] for k in ("x", "y"))),
-                   params=axes))
+    graph.add(Node(POINT_NODE, sim_inputs, lambda p, prm: PointRequest.of(p, prm["x"], prm["y"]),
+                   lambda req, _pull: design_radius(req), params=axes))

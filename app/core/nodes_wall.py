@@ -15,14 +15,16 @@ would not fit in a 16 ms frame).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Hashable
+from collections.abc import Callable
 from typing import Any
 
 from analysis.profiles.io import Profile
 from analysis.study import (
     DEFAULT_BC,
     WallAdmittances,
+    WallAtRequest,
     WallPoint,
+    WallRequest,
     WallTradeoff,
     admittance_grid,
     wall_admittances,
@@ -46,39 +48,37 @@ AT_BC_NODES = ("wall_point", "wall_step", "wall_admittance")
 _INPUTS = frozenset({"wall"}) | frozenset(DEVICE_FIELDS)
 
 
-def _design_key(p: Profile, params: dict) -> Hashable:
-    st = wall_settings(p)
-    return st, (p.device.key() if st.plant == "chain" else None)
+def _wall_request(p: Profile, params: dict) -> WallRequest:
+    return WallRequest.of(p)
 
 
-def _at_bc_key(p: Profile, params: dict) -> Hashable:
-    return _design_key(p, params), float(params["bc"])
+def _at_bc_request(p: Profile, params: dict) -> WallAtRequest:
+    return WallAtRequest(WallRequest.of(p), float(params["bc"]))
 
 
-def _tradeoff(profile: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> WallTradeoff | None:
-    return wall_tradeoff(profile, progress=progress, cancelled=cancelled)  # its own WallDesign, never shared
+def _tradeoff(req: WallRequest, progress: Progress, cancelled: Cancelled) -> WallTradeoff | None:
+    return wall_tradeoff(req, progress=progress, cancelled=cancelled)  # its own WallDesign, never shared
 
 
-def _step(profile: Profile, params: dict, progress: Progress, cancelled: Cancelled) -> Any:
+def _step(req: WallAtRequest, progress: Progress, cancelled: Cancelled) -> Any:
     """The step response at the current B_c (Figs. 7, 10), on the worker: its own WallDesign."""
-    return wall_step(wall_design(profile), float(params["bc"]))
+    return wall_step(wall_design(req.wall), req.bc)
 
 
 def _at_bc_node(name: str, func: Callable[[Any, float], Any]) -> Node:
     """A synchronous node: ``func(design, bc)`` at its parameter ``bc`` (the tab's current B_c)."""
-    params = {"bc": DEFAULT_BC}
 
-    def compute(_p: Profile, pull: Pull) -> Any:
-        return func(pull("wall_design"), float(params["bc"]))
+    def compute(req: WallAtRequest, pull: Pull) -> Any:
+        return func(pull("wall_design"), req.bc)
 
-    return Node(name, _INPUTS, _at_bc_key, compute, params=params)
+    return Node(name, _INPUTS, _at_bc_request, compute, params={"bc": DEFAULT_BC})
 
 
 def register(graph: ComputeGraph) -> None:
     """Add the wall controller's nodes to ``graph``."""
-    graph.add(Node("wall_design", _INPUTS, _design_key, lambda p, _: wall_design(p)))
-    graph.add(Node("wall_tradeoff", _INPUTS, _design_key, _tradeoff, asynchronous=True, live=False))
+    graph.add(Node("wall_design", _INPUTS, _wall_request, lambda req, _: wall_design(req)))
+    graph.add(Node("wall_tradeoff", _INPUTS, _wall_request, _tradeoff, asynchronous=True, live=False))
     graph.add(_at_bc_node("wall_point", wall_point))
-    graph.add(Node("wall_step", _INPUTS, _at_bc_key, _step, params={"bc": DEFAULT_BC}, asynchronous=True,
+    graph.add(Node("wall_step", _INPUTS, _at_bc_request, _step, params={"bc": DEFAULT_BC}, asynchronous=True,
                    live=False))
     graph.add(_at_bc_node("wall_admittance", wall_admittances))

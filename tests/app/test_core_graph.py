@@ -92,9 +92,9 @@ def test_the_admittance_display_pulls_its_own_device_node(graph):
 
 def small_graph(model: ProfileModel, runner: TaskRunner) -> ComputeGraph:
     g = ComputeGraph(model, runner)
-    g.add(Node("a", frozenset({"kc"}), lambda p, prm: (p.kc, prm["scale"]), lambda p, pull: 2 * p.kc,
+    g.add(Node("a", frozenset({"kc"}), lambda p, prm: (p.kc, prm["scale"]), lambda req, pull: 2 * req[0],
                params={"scale": 1.0}))
-    g.add(Node("b", frozenset({"kc", "bc"}), lambda p, _: (p.kc, p.bc), lambda p, pull: pull("a") + p.bc))
+    g.add(Node("b", frozenset({"kc", "bc"}), lambda p, _: (p.kc, p.bc), lambda req, pull: pull("a") + req[1]))
     return g
 
 
@@ -163,13 +163,13 @@ def test_a_newer_request_supersedes_and_a_cancel_keeps_the_last_result(parts, qt
     release = {50000.0: threading.Event(), 60000.0: threading.Event(), 70000.0: threading.Event()}
     started: list[float] = []
 
-    def slow(p, params, progress, cancelled):
-        started.append(p.kc)
-        while not release[p.kc].is_set():
+    def slow(kc, progress, cancelled):
+        started.append(kc)
+        while not release[kc].is_set():
             if cancelled():
                 return None
-            release[p.kc].wait(0.001)
-        return 2 * p.kc
+            release[kc].wait(0.001)
+        return 2 * kc
 
     g.add(Node("slow", frozenset({"kc"}), lambda p, _: p.kc, slow, asynchronous=True))
     ready: list[str] = []
@@ -191,3 +191,38 @@ def test_a_newer_request_supersedes_and_a_cancel_keeps_the_last_result(parts, qt
         g.cancel("slow")
     assert runner.wait(30000)
     assert ready == ["slow"] and g.result("slow") == 120000.0 and not g.is_fresh("slow")
+
+
+#: the synchronous nodes of the stability, sampled-data, wall and observer graphs (cheap to pull)
+SYNC_NODES = ("impedance_display", "stability", "stability_preview", "max_stiffness", "sampled_point", "wall_design",
+              "wall_point", "observer_response")
+
+
+@pytest.mark.parametrize("field,value", [("kc", 61000.0), ("bc", 140.0), ("mc", 3.0), ("kp", 1234.0),
+                                         ("sample_time", 5e-4), ("name", "renamed"), ("notes", "more notes")])
+def test_exactly_the_nodes_whose_requests_changed_are_recomputed(graph, field, value):
+    """Each node's cache key is its study request: an edit recomputes the nodes whose request it
+    changed, and no other (a request that misses an input would fail the first half, one that
+    holds an unused input the second)."""
+    from app.core import nodes_observer, nodes_sampled, nodes_wall
+
+    for register in (nodes_sampled.register, nodes_wall.register, nodes_observer.register):
+        register(graph)
+    for name in SYNC_NODES:
+        graph.get(name, hold=False)
+    before = {n: graph.key_of(n) for n in SYNC_NODES}
+    calls = {n: graph.calls(n) for n in SYNC_NODES}
+    graph.model.set(field, value)
+    for name in SYNC_NODES:
+        graph.get(name, hold=False)
+    changed = {n for n in SYNC_NODES if graph.key_of(n) != before[n]}
+    recomputed = {n for n in SYNC_NODES if graph.calls(n) > calls[n]}
+    assert recomputed == changed
+    assert all(graph.calls(n) - calls[n] <= 1 for n in SYNC_NODES)
+    expected = {"kc": {"stability", "stability_preview", "sampled_point"},
+                "bc": {"stability", "stability_preview", "max_stiffness", "sampled_point"},
+                "mc": set(), "kp": {"sampled_point"}, "name": set(), "notes": set()}
+    if field in expected:
+        assert changed == expected[field]
+    else:  # a device field: every device-side node (the observer and a rigid-body wall from its mass only)
+        assert {"impedance_display", "stability", "max_stiffness", "sampled_point"} <= changed

@@ -30,7 +30,8 @@ KC = (52e3, 54e3, 56e3, 58e3, 60e3)
 
 @pytest.fixture
 def setup(qapp):
-    """Model, editor (drag tokens), graph with the sampled nodes; the held nodes return their key."""
+    """Model, editor (drag tokens), graph with the sampled nodes; the held nodes return their
+    request's coupling ``(k_c, b_c)`` (the request itself when it holds none)."""
     model = ProfileModel(load_profile(bundled_profiles()["hbfd"]))
     stack = QUndoStack()
     editor = Editor(model, stack)
@@ -39,7 +40,7 @@ def setup(qapp):
     nodes_sampled.register(graph)
     editor.dragChanged.connect(graph.set_interactive)
     for name in (MAP_NODE, SIM_NODE, LIMIT_NODE, EXACT_NODE):
-        graph.replace_function(name, lambda p, params, progress, cancelled: (p.kc, p.bc))
+        graph.replace_function(name, lambda req, progress, cancelled: req.loop.coupling or req)
     yield model, editor, graph, stack
     runner.shutdown()
 

@@ -194,7 +194,7 @@ def test_cancel_keeps_last_result_and_can_rerun(window, qtbot):
     real = g.function(EXACT_NODE)
     held = []
 
-    def held_once(profile, params, progress, cancelled):
+    def held_once(request, progress, cancelled):
         if not held:
             held.append(True)
             for _ in range(2000):
@@ -202,7 +202,7 @@ def test_cancel_keeps_last_result_and_can_rerun(window, qtbot):
                     return None
                 progress(0, 1)
                 time.sleep(0.005)
-        return real(profile, params, progress, cancelled)
+        return real(request, progress, cancelled)
 
     g.replace_function(EXACT_NODE, held_once)
     set_section(window, delay_samples=2)  # the exact chart restarts
