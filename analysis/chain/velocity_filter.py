@@ -36,7 +36,7 @@ import numpy as np
 from analysis.checks import Real, SettingsRecord, choice
 from analysis.errors import ValidationError
 
-__all__ = ["VelocityFilter", "FILTER_KINDS", "BACKWARD", "FilterRealization", "display_filter"]
+__all__ = ["VelocityFilter", "FILTER_KINDS", "BACKWARD", "FilterRealization", "display_filter", "highest_cutoff"]
 
 #: The filter kinds and what they are.
 FILTER_KINDS = {
@@ -175,6 +175,15 @@ class VelocityFilter(SettingsRecord):
 
 #: The default velocity estimate.
 BACKWARD = VelocityFilter()
+
+
+def highest_cutoff(sample_time: float) -> float:
+    """The highest cut-off (rad/s) zwidth proposes for a filter: 0.9 of Nyquist, ``0.9 pi/T``.
+
+    The top of the default cut-off grid of the Z-width optimum and the clamp of a new filter's
+    cut-off in the GUI; a cut-off must stay below Nyquist ``pi/T`` (:meth:`VelocityFilter.check`).
+    """
+    return 0.9 * math.pi / sample_time
 
 
 def display_filter(velocity_filter: VelocityFilter | None, sample_time: float) -> VelocityFilter | None:

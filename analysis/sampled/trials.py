@@ -33,7 +33,7 @@ import numpy as np
 from scipy import optimize
 
 from analysis.chain.device import Device
-from analysis.chain.velocity_filter import FILTER_KINDS, VelocityFilter
+from analysis.chain.velocity_filter import FILTER_KINDS, VelocityFilter, highest_cutoff
 from analysis.checks import choice
 from analysis.errors import ValidationError
 from analysis.sampled.velocity_noise import DEFAULT_FORCE_NOISE, noise_limited_damping
@@ -132,7 +132,7 @@ def _cutoffs(kind: str, cutoffs: np.ndarray | None, T: float) -> np.ndarray:
     """The validated cut-off grid (default 30 from 2 pi 5 rad/s to 0.9 of Nyquist)."""
     choice("kind", kind, [k for k in FILTER_KINDS if k != "backward"], allowed="lowpass1 or butter2")
     if cutoffs is None:
-        cutoffs = np.geomspace(2 * math.pi * 5, 0.9 * math.pi / T, 30)
+        cutoffs = np.geomspace(2 * math.pi * 5, highest_cutoff(T), 30)
     cs = np.asarray(cutoffs, float).reshape(-1)
     for c in cs.tolist():
         VelocityFilter(kind, c).check(T)

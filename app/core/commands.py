@@ -158,8 +158,7 @@ class Editor(QObject):
         dev = self.model.device
         m = np.append(dev.masses, dev.masses[-1])
         k = np.append(dev.stiffnesses, dev.stiffnesses[-1] if dev.n > 1 else 1e5)
-        mu = m[-2] * m[-1] / (m[-2] + m[-1])
-        b = np.append(dev.dampings, 2.0 * 0.1 * np.sqrt(k[-1] * mu))
+        b = np.append(dev.dampings, damping_from_ratio(float(k[-1]), float(m[-2]), float(m[-1]), 0.1))  # eq. (28)
         g = np.append(dev.ground_dampings, 0.0)
         try:
             new = dev.replace(masses=m, stiffnesses=k, dampings=b, ground_dampings=g)

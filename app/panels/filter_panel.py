@@ -16,7 +16,7 @@ import math
 from PySide6.QtCore import Qt, Slot
 from PySide6.QtWidgets import QGroupBox, QLabel, QVBoxLayout, QWidget
 
-from analysis.chain.velocity_filter import VelocityFilter
+from analysis.chain.velocity_filter import VelocityFilter, highest_cutoff
 from analysis.profiles.model import Profile
 from analysis.study import controller_section
 
@@ -81,7 +81,7 @@ class FilterPanel(QGroupBox):
         kind = str(kind)
         cutoff = math.inf if kind == "backward" else _cutoff_hz(self._model.profile) * _TWO_PI
         if kind != "backward":  # a filter must stay below Nyquist: clamp the default cut-off
-            cutoff = min(cutoff, 0.9 * math.pi / self._model.device.sample_time)
+            cutoff = min(cutoff, highest_cutoff(self._model.device.sample_time))
         return self._write(VelocityFilter(kind, cutoff), f"kind to {KIND_LABELS.get(kind, kind)}", drag)
 
     def set_cutoff_hz(self, hz: float, drag: int | None = None) -> str | None:

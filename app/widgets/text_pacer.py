@@ -6,6 +6,11 @@ part of a step's time.  A :class:`TextPacer` shows such texts at once outside a 
 drag it shows them at most every :attr:`TextPacer.interval_ms` (the first step at once, then the
 newest text of each key when the interval has passed, and always the last one when the drag pauses
 or ends), so the numbers stay live at ten updates a second and end exact.
+
+Why not ``pyqtgraph.SignalProxy(signal, rateLimit=10)``: it delivers every update from a timer,
+never in the call, so the first step of a drag and the text at its release arrive a turn of the
+event loop to 100 ms late (measured: the release's text 72 ms after it), and outside a drag an
+edit's numbers would lag its plots; it also paces one signal's arguments, not texts by key.
 """
 
 from __future__ import annotations

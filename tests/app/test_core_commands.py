@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from PySide6.QtGui import QUndoStack
 
+from analysis.chain import ratio_from_damping
 from analysis.profiles.io import bundled_profiles, load_profile
 from app.core.commands import Editor
 from app.core.model import ProfileModel
@@ -104,6 +105,12 @@ def test_add_and_remove_mass_are_single_steps(editor):
     n = model.device.n
     assert editor.add_mass() is None
     assert model.device.n == n + 1 and stack.count() == 1
+    # the new element: a copy of the last mass, damped at ratio 0.1 (eq. 28 with the reduced mass)
+    dev = model.device
+    m_a, m_b, k = dev.masses[-2], dev.masses[-1], dev.stiffnesses[-1]
+    assert m_b == m_a
+    assert dev.dampings[-1] == pytest.approx(0.2 * np.sqrt(k * m_a * m_b / (m_a + m_b)), rel=1e-12)
+    assert ratio_from_damping(k, m_a, m_b, dev.dampings[-1]) == pytest.approx(0.1, rel=1e-12)
     assert editor.remove_mass() is None
     assert model.device.n == n
     stack.undo()

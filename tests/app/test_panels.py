@@ -81,3 +81,26 @@ def test_observer_panel_creates_a_missing_section(editor):
     assert editor.model.profile.observer == ObserverSettings(order=4)
     editor.stack.undo()
     assert editor.model.profile.observer is None
+
+
+def test_filter_panel_clamps_a_new_filter_below_nyquist(qapp):
+    """Choosing a filter while the shown cut-off is above 0.9 Nyquist starts it at 0.9 Nyquist."""
+    import math
+
+    from analysis.chain.velocity_filter import highest_cutoff
+    from analysis.study import controller_section
+    from app.panels.filter_panel import DEFAULT_CUTOFF_HZ, FilterPanel
+
+    model = ProfileModel(load_profile(bundled_profiles()["hbfd"]))
+    stack = QUndoStack()
+    panel = FilterPanel(model, Editor(model, stack))
+    T = model.device.sample_time
+    assert highest_cutoff(T) == pytest.approx(0.9 * math.pi / T, rel=1e-15)
+    assert panel.set_kind("lowpass1") is None  # the default 30 Hz, well below Nyquist here
+    assert controller_section(model.profile).velocity_filter.cutoff == pytest.approx(2 * math.pi * DEFAULT_CUTOFF_HZ)
+    stack.undo()
+    model.set("sample_time", 1.0 / (2 * 30.0))  # Nyquist 30 Hz: the shown 30 Hz is too high for a filter
+    T = model.device.sample_time
+    assert panel.set_kind("butter2") is None
+    vf = controller_section(model.profile).velocity_filter
+    assert vf.kind == "butter2" and vf.cutoff == highest_cutoff(T) < math.pi / T
