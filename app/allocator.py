@@ -2,11 +2,17 @@
 
 glibc's allocator gives memory above its trim threshold (128 KiB) back to the kernel on
 free, and large blocks come from fresh ``mmap`` pages.  The analysis allocates and frees
-arrays of 10^4..10^6 elements on every slider move, so each evaluation page-faults its
-working memory back in: for the HBFD at 2000 frequencies that is a third of the run time
-(1.6 ms -> 1.0 ms when tuned; BENCHMARKS.md).  zwidth's own processes (the GUI, the command
-line and the benchmarks) raise both thresholds at start-up.  The analysis package itself never
-does this: it is a library, and this setting belongs to the process.
+arrays of 10^4..10^6 elements on every slider move, so each evaluation can page-fault its
+working memory back in.  zwidth's own processes (the GUI, the command line and the benchmarks)
+raise both thresholds at start-up.  The analysis package itself never does this: it is a
+library, and this setting belongs to the process.
+
+Since issue 21 the chain responses keep their work arrays per thread between calls
+(``analysis.chain.response``), so a library user's process no longer pays for the default
+settings on the usual devices: the HBFD at 2000 frequencies runs within a few per cent of the
+tuned time (it was 1.7x, about 170 page faults per evaluation; ``tests/benchmarks/bench_untuned.py``,
+BENCHMARKS.md).  The tuning still pays on long chains, whose ``n x N`` work arrays of several MB
+are too large to keep.
 """
 
 from __future__ import annotations

@@ -32,17 +32,18 @@ __all__ = [
 ]
 
 
-def continued_fraction(node: Sequence, elem: Sequence, R):
+def continued_fraction(node: Sequence, elem: Sequence, R, work: np.ndarray | None = None):
     """``R <- node_i + z_i R / (z_i + R)`` for ``i = n-2 .. 0``; returns ``R_0``.
 
     This is a numerical kernel: the sweep is kept in one piece so that the array form (in place, no
     temporaries per mass) and the Python-complex form (one frequency, no per-mass array
     overhead) perform the same floating-point operations in the same order (Python's and
     numpy's complex division may still differ in the last bit).  ``node`` has ``n`` entries,
-    ``elem`` ``n - 1``; ``R`` is ``R_{n-1}`` (an array is overwritten).
+    ``elem`` ``n - 1``; ``R`` is ``R_{n-1}`` (an array is overwritten).  ``work``, an array of
+    ``R``'s shape and dtype, is used as the sweep's one temporary instead of a new one.
     """
     if isinstance(R, np.ndarray):
-        d = np.empty_like(R)
+        d = np.empty_like(R) if work is None else work
         for i in range(len(elem) - 1, -1, -1):
             e = elem[i]
             np.add(e, R, out=d)

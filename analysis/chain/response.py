@@ -26,6 +26,8 @@ Quantities are formed so that no step subtracts nearly equal numbers:
 
 from __future__ import annotations
 
+import math
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -64,44 +66,97 @@ class ChainResponse:
     sensor_from_actuator: np.ndarray
 
 
+#: a work array of up to this many elements (256 KiB of complex) is kept between calls
+_KEEP_ELEMENTS = 1 << 14
+
+
+class _Workspace(threading.local):
+    """The work arrays of :func:`chain_response`, kept per thread between calls.
+
+    One evaluation of the HBFD at 2000 frequencies needs about 0.8 MB of ``(n-1) x N`` work
+    arrays.  Allocated and freed on every call, that memory returns to the top of glibc's heap,
+    which (with the default trim threshold of 128 KiB) is given back to the kernel and
+    page-faulted in again by the next call: 1.7x the run time of a process that tunes its
+    allocator (``app/allocator.py``; issue 21).  Here each array is a flat buffer, reshaped on
+    request and grown to the largest request up to :data:`_KEEP_ELEMENTS` elements; a larger
+    request (long chains, very fine grids) gets a fresh array that is not kept.  At most about
+    4 MiB per thread are kept.  Nothing :func:`chain_response` returns is a view of them.
+    """
+
+    def __init__(self) -> None:
+        self.buffers: dict[str, np.ndarray] = {}
+        self.last: dict[str, tuple[tuple[int, ...], np.ndarray]] = {}  # the last shape's view
+
+    def get(self, name: str, shape: tuple[int, ...], dtype: type = complex) -> np.ndarray:
+        """A C-contiguous array of ``shape`` (contents undefined), one per ``name`` and thread."""
+        hit = self.last.get(name)
+        if hit is not None and hit[0] == shape:
+            return hit[1]
+        size = math.prod(shape)
+        buf = self.buffers.get(name)
+        if buf is None or buf.size < size:
+            buf = np.empty(size, dtype=dtype)
+            if size > _KEEP_ELEMENTS:
+                return buf.reshape(shape)
+            self.buffers[name] = buf
+        view = buf[:size].reshape(shape)
+        self.last[name] = (shape, view)
+        return view
+
+
+_workspace = _Workspace()
+
+
 def _abs2(a: np.ndarray) -> np.ndarray:
     return a.real * a.real + a.imag * a.imag
 
 
-def _wabs2(weights: np.ndarray, rows: np.ndarray) -> np.ndarray:
-    """``sum_i weights_i |rows_i|^2`` over the chain, on the contiguous float view.
+def _wabs2(weights: np.ndarray, rows: np.ndarray, ws: _Workspace) -> np.ndarray:
+    """``sum_i weights_i |rows_i|^2`` over the chain, on the contiguous float view (a work
+    array of ``ws``: use it before the next call).
 
     (``a.real * a.real + a.imag * a.imag`` on 2-D complex arrays walks strided memory and is
     about 10x slower for long chains.)
     """
+    k, N = rows.shape
     f = rows.view(np.float64)
-    acc = np.einsum("i,ij->j", weights, f * f)
-    return acc[0::2] + acc[1::2]
+    sq = np.multiply(f, f, out=ws.get("sq", (k, 2 * N), float))
+    acc = np.einsum("i,ij->j", weights, sq, out=ws.get("acc", (2 * N,), float))
+    return np.add(acc[0::2], acc[1::2], out=ws.get("racc", (N,), float))
+
+
+def _rows(a: np.ndarray, index: np.ndarray, ws: _Workspace) -> np.ndarray:
+    """``a[index]`` (rows), a view when ``index`` is one row, else a work array of ``ws``."""
+    if index.size == 1:
+        return a[index[0]:index[0] + 1]
+    return np.take(a, index, axis=0, out=ws.get("take", (index.size,) + a.shape[1:], a.dtype.type))
 
 
 _BLOCK_ROWS = 32  # rows per block of _damper_sums: a block of each operand stays in cache
 
 
-def _damper_sums(bb: np.ndarray, v: np.ndarray, r: np.ndarray, G: np.ndarray):
+def _damper_sums(bb: np.ndarray, v: np.ndarray, r: np.ndarray, G: np.ndarray, ws: _Workspace):
     """``nu = v[:-1] r`` (in place in ``r``), ``sum_e b_e |nu_e|^2`` and
     ``sum_e b_e conj(nu_e) v_e G_e`` in one pass over the chain, block by block of rows."""
     n1, N = r.shape
-    re = np.zeros(2 * N)
+    re = ws.get("re", (2 * N,), float)
+    re.fill(0.0)
     x = np.zeros(2 * N)
     rows = min(_BLOCK_ROWS, n1)
-    sq = np.empty((rows, 2 * N))
-    tmp = np.empty((rows, N), dtype=complex)
+    sq = ws.get("sq", (rows, 2 * N), float)
+    tmp = ws.get("tmp", (rows, N))
+    acc = ws.get("acc", (2 * N,), float)
     for a in range(0, n1, rows):
         b = min(a + rows, n1)
         k = b - a
         nu = np.multiply(v[a:b], r[a:b], out=r[a:b])
         f = nu.view(np.float64)
         np.multiply(f, f, out=sq[:k])
-        re += np.einsum("i,ij->j", bb[a:b], sq[:k])
+        re += np.einsum("i,ij->j", bb[a:b], sq[:k], out=acc)
         c = np.conjugate(nu, out=tmp[:k])
         c *= v[a:b]
         c *= G[a:b]
-        x += np.einsum("i,ij->j", bb[a:b], c.view(np.float64))
+        x += np.einsum("i,ij->j", bb[a:b], c.view(np.float64), out=acc)
     return r, re[0::2] + re[1::2], x.view(complex)
 
 
@@ -131,9 +186,43 @@ def chain_response(device: Device, s: np.ndarray, termination: np.ndarray | None
 
     ``impedances`` may pass the (node, element) arrays of :func:`analysis.chain.continued_fraction.chain_impedances` for the
     same ``s``; they are not modified.
+
+    Every frequency is computed on its own, so a long frequency vector is taken in blocks whose
+    work arrays stay in the thread's workspace (:class:`_Workspace`; the results are the same
+    bits as in one block).
     """
+    s = np.asarray(s, dtype=complex)
+    step = _KEEP_ELEMENTS // device.n
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        return _chain_response(device, s, termination, re_termination, want_x, want_left, impedances)
+        if device.n == 1 or s.ndim != 1 or s.size <= step or step < _MIN_BLOCK:
+            return _chain_response(device, s, termination, re_termination, want_x, want_left, impedances)
+        parts = []
+        for a in range(0, s.size, step):
+            cut = slice(a, a + step)
+            imp = None if impedances is None else (impedances[0][:, cut], impedances[1][:, cut])
+            parts.append(_chain_response(device, s[cut], _block(termination, cut), _block(re_termination, cut),
+                                         want_x, want_left, imp))
+    return _joined(s, parts)
+
+
+#: the shortest block of frequencies :func:`chain_response` cuts a long vector into (shorter
+#: blocks would cost more in per-call overhead than the workspace saves; longer chains then
+#: take the whole vector at once, in fresh arrays)
+_MIN_BLOCK = 1024
+
+
+def _block(a, cut: slice):
+    """``a[cut]`` for a per-frequency array; a scalar or ``None`` as it is."""
+    return a if a is None or np.ndim(a) == 0 else np.asarray(a)[cut]
+
+
+def _joined(s: np.ndarray, parts: list[ChainResponse]) -> ChainResponse:
+    """The responses of consecutive blocks of ``s`` as one :class:`ChainResponse`."""
+    fields = {}
+    for name in ("y11", "y22", "y12", "re_y11", "re_y22", "x", "sensor_from_handle", "sensor_from_actuator"):
+        first = getattr(parts[0], name)
+        fields[name] = None if first is None else np.concatenate([getattr(p, name) for p in parts])
+    return ChainResponse(s=s, **fields)
 
 
 def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | None,
@@ -174,13 +263,17 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
         return ChainResponse(s=s, y11=y, y22=y, y12=-y, re_y11=re, re_y22=re, x=zero,
                              sensor_from_handle=np.ones(N, dtype=complex), sensor_from_actuator=zero)
 
+    # every (n-1) x N or N array below that is not returned is a work array of the thread's
+    # workspace (see _Workspace), reused from call to call
+    ws = _workspace
     # right sweep: R[i] = impedance of nodes i..n-1 seen at node i; v_{i+1} = v_i t_i and
     # nu_i = v_i - v_{i+1} = v_i r_i with r_i = R_{i+1}/(z_i + R_{i+1}) (no subtraction)
-    t = np.empty((n - 1, N), dtype=complex)
-    r = np.empty((n - 1, N), dtype=complex)
+    t = ws.get("t", (n - 1, N))
+    r = ws.get("r", (n - 1, N))
     # 1/(z_i + R_{i+1}), kept for the minors below (one row buffer when they are not wanted)
-    inv_all = np.empty((n - 1, N), dtype=complex) if want_x else None
-    buf = np.empty(N, dtype=complex)
+    inv_all = ws.get("inv", (n - 1, N)) if want_x else None
+    buf = ws.get("row0", (N,))
+    R_next = ws.get("row1", (N,))
     R = node[n - 1]
     for i in range(n - 2, -1, -1):
         e = elem[i]
@@ -189,10 +282,10 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
         np.divide(1.0, inv, out=inv)
         np.multiply(e, inv, out=t[i])
         np.multiply(R, inv, out=r[i])
-        R = e * r[i]
+        R = np.multiply(e, r[i], out=R_next)
         R += node[i]
-    v = np.empty((n, N), dtype=complex)
-    v[0] = 1.0 / R
+    v = ws.get("v", (n, N))
+    np.divide(1.0, R, out=v[0])
     for i in range(n - 1):
         np.multiply(v[i], t[i], out=v[i + 1])
     # with the minors, nu and the damper sums are formed in one blocked pass at the end
@@ -203,40 +296,44 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
     # left sweep: L[i] = impedance of nodes 0..i seen at node i (node n-1 carries the
     # termination); w_i = w_{i+1} tl_i, om_i = w_i - w_{i+1} = -w_{i+1} rl_i
     if want_left:
-        tl = np.empty((n - 1, N), dtype=complex)
-        rl = np.empty((n - 1, N), dtype=complex)
+        tl = ws.get("tl", (n - 1, N))
+        rl = ws.get("rl", (n - 1, N))
+        inv, L_next = ws.get("row2", (N,)), ws.get("row3", (N,))
         L = node[0]
         for i in range(1, n):
             e = elem[i - 1]
-            inv = 1.0 / (e + L)
+            np.add(e, L, out=inv)
+            np.divide(1.0, inv, out=inv)
             np.multiply(e, inv, out=tl[i - 1])
             np.multiply(L, inv, out=rl[i - 1])
-            L = node[i] + e * rl[i - 1]
-        w = np.empty((n, N), dtype=complex)
-        w[n - 1] = 1.0 / L
+            L = np.multiply(e, rl[i - 1], out=L_next)
+            L += node[i]
+        w = ws.get("w", (n, N))
+        np.divide(1.0, L, out=w[n - 1])
         for i in range(n - 2, -1, -1):
             np.multiply(w[i + 1], tl[i], out=w[i])
-        om_neg = w[1:] * rl  # -om: the sign only matters for the gauge reading below
+        om_neg = np.multiply(w[1:], rl, out=rl)  # -om: the sign only matters for the gauge reading
     else:  # the same continued fraction seen from the actuator end: L <- node_i + e L / (e + L)
-        y22_only = 1.0 / continued_fraction(node[::-1], elem[::-1], node[0].copy())
+        y22_only = continued_fraction(node[::-1], elem[::-1], node[0].copy(), work=ws.get("row2", (N,)))
+        np.divide(1.0, y22_only, out=y22_only)
 
     # real parts as dissipated power (non-negative terms only)
     gi = np.flatnonzero(g)  # usually one damper to ground: touch only those rows
     re11 = np.zeros(N)
     if not fused and np.any(bb):
-        re11 = re11 + _wabs2(bb, nu)
+        re11 += _wabs2(bb, nu, ws)
     if gi.size:
-        re11 = re11 + _wabs2(g[gi], v[gi])
+        re11 += _wabs2(g[gi], _rows(v, gi, ws), ws)
     if termination is not None and re_termination is not None:
-        re11 = re11 + np.asarray(re_termination, float) * _abs2(v[n - 1])
+        re11 += np.asarray(re_termination, float) * _abs2(v[n - 1])
     if want_left:
         re22 = np.zeros(N)
         if np.any(bb):
-            re22 = re22 + _wabs2(bb, om_neg)
+            re22 += _wabs2(bb, om_neg, ws)
         if gi.size:
-            re22 = re22 + _wabs2(g[gi], w[gi])
+            re22 += _wabs2(g[gi], _rows(w, gi, ws), ws)
         if termination is not None and re_termination is not None:
-            re22 = re22 + np.asarray(re_termination, float) * _abs2(w[n - 1])
+            re22 += np.asarray(re_termination, float) * _abs2(w[n - 1])
 
     # X by the minors (Casoratian), propagated from the actuator end in scaled variables:
     # P~_{n-1} = 0, phi^_{n-2} = 1; phi^_{k-1} = t_k phi^_k + (m_k s + g_k) P~_k,
@@ -253,18 +350,20 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
         if n - 2 in keep:
             P_rows[n - 2] = Pk.copy()
         phi = None
+        phi_rows = (ws.get("row2", (N,)), ws.get("row3", (N,)))  # phi^_k and phi^_{k-1}, alternating
+        P_next = ws.get("row1", (N,))
         for k in range(n - 2, 0, -1):
             # phi^_{k-1} = t_k phi^_k + node_k P~_k  (phi^_{n-2} = 1)
-            nP = node[k] * Pk
+            nP = np.multiply(node[k], Pk, out=phi_rows[k % 2])
             nP += t[k] if phi is None else np.multiply(t[k], phi, out=phi)
             phi = nP
             np.multiply(G[k - 1], phi, out=G[k - 1])
-            Pk = t[k - 1] * Pk
+            Pk = np.multiply(t[k - 1], Pk, out=P_next)
             Pk += G[k - 1]
             if k - 1 in keep:
                 P_rows[k - 1] = Pk.copy()
         if fused:
-            nu, re_b, x = _damper_sums(bb, v, r, G)
+            nu, re_b, x = _damper_sums(bb, v, r, G, ws)
             re11 += re_b
         else:
             x = np.zeros(N, dtype=complex)
@@ -281,8 +380,8 @@ def _chain_response(device: Device, s: np.ndarray, termination: np.ndarray | Non
         re22 = (x.real + y12.real ** 2) / re11
     return ChainResponse(
         s=s,
-        y11=v[0],
-        y22=w[n - 1] if want_left else y22_only,
+        y11=v[0].copy(),
+        y22=w[n - 1].copy() if want_left else y22_only,
         y12=y12,
         re_y11=re11,
         re_y22=re22,
