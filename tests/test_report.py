@@ -232,3 +232,56 @@ def test_report_typesets_numbers_and_names(built):
     assert caption is not None
     printed = re.search(r"([\d.]+) % at", caption.group(1))
     assert printed is not None and float(printed.group(1)) == pytest.approx(reserve, rel=1e-3)
+
+
+def test_report_into_a_folder_fails_clearly_and_leaves_nothing(app, tmp_path, monkeypatch, capsys):
+    """Issue 22: ``report -o dir.html`` where dir.html is a folder says so, before any analysis,
+    and leaves nothing behind (it used to leave ``dir.html.part``)."""
+    from analysis.profiles import WriteError
+    from app import cli
+    from app.report import build_report
+
+    folder = tmp_path / "dir.html"
+    folder.mkdir()
+    with pytest.raises(WriteError) as info:
+        build_report(load_profile(bundled_profiles()["rigid"]), folder, sampled=False)
+    assert info.value.strerror == f"Is a folder: {folder}"
+    monkeypatch.setattr("app.allocator.tune_allocator", lambda: False)
+    code = cli.main(["report", str(bundled_profiles()["rigid"]), "-o", str(folder), "--no-sampled"])
+    assert code == 1
+    assert capsys.readouterr().err == f"zwidth: error: cannot write {folder}: Is a folder: {folder}\n"
+    assert [p.name for p in tmp_path.iterdir()] == ["dir.html"] and list(folder.iterdir()) == []
+
+
+def test_a_failing_report_leaves_no_temporary_and_keeps_the_old_file(app, tmp_path, monkeypatch):
+    from app.report import build_report, pdf
+
+    profile = load_profile(bundled_profiles()["rigid"])
+    for name in ("old.pdf", "old.html"):
+        (tmp_path / name).write_bytes(b"old report")
+
+    def broken(*_args, **_kwargs):
+        raise RuntimeError("renderer failed")
+
+    monkeypatch.setattr(pdf, "section_html", broken)  # fails once Qt's writer has its (temporary) file
+    with pytest.raises(RuntimeError):
+        build_report(profile, tmp_path / "old.pdf", sampled=False)
+    monkeypatch.setattr("app.report.html.report_html", broken)
+    with pytest.raises(RuntimeError):
+        build_report(profile, tmp_path / "old.html", sampled=False)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["old.html", "old.pdf"]
+    assert {p.read_bytes() for p in tmp_path.iterdir()} == {b"old report"}
+
+
+def test_report_content_imports_without_qt():
+    """The report's content comes from analysis.study alone: importing it loads no Qt."""
+    import subprocess
+    import sys
+
+    code = ("import sys, app.report.content, app.report.model\n"
+            "bad = sorted(m for m in sys.modules if m.split('.')[0] in ('PySide6', 'shiboken6', 'pyqtgraph')\n"
+            "             or m.startswith('app.views'))\n"
+            "print(bad)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         cwd=Path(__file__).resolve().parents[1])
+    assert out.stdout.strip() == "[]"

@@ -1,7 +1,11 @@
 """Design reports: PDF and HTML built from the analysis core and the app's own plot views.
 
-* :mod:`.content` gathers every number (Qt-free);
-* :mod:`.figures` draws them with the app's :class:`~app.views.base.PlotView` classes, offscreen;
+* :mod:`.model` is what a report is made of (rows, sections, figures, the parts each section
+  returns) and how it prints a number; every other module imports it, it imports none of them;
+* :mod:`.content` gathers every number (Qt-free), with :mod:`.identify_section` and
+  :mod:`.zwidth_section` (Qt-free too);
+* :mod:`.figures` draws them with the app's :class:`~app.views.base.PlotView` classes, offscreen,
+  with :mod:`.plots`, :mod:`.identify_figures` and :mod:`.zwidth_figures`;
 * :mod:`.pdf` and :mod:`.html` lay them out; :func:`build_report` picks by file extension;
 * :mod:`.action` is File → Export Report… in the app.
 """
@@ -25,15 +29,22 @@ def build_report(profile, path, *, page_size: str = "a4", source: str | None = N
 
     ``progress(step, total, text)`` is called between stages; returning ``False`` cancels
     (raises :class:`ReportCancelled`).  Needs a ``QApplication`` (see :func:`.figures.ensure_app`).
+    The file is written atomically (:func:`analysis.profiles.atomic_write`); a target that cannot
+    be written (a folder, a missing folder) raises its ``WriteError`` (an ``OSError``) before any work.
     """
     import time
 
+    from analysis.profiles import WriteError
+    from analysis.profiles.files import unwritable_reason
     from app.report.content import ReportCancelled, gather
     from app.report.figures import build_figures
 
     fmt = report_format(path)
     if fmt is None:
         raise ValueError(f"{path}: the report format comes from the extension: .pdf or .html")
+    reason = unwritable_reason(path)
+    if reason is not None:  # say so before a minute of analysis, not after (a folder, a missing folder)
+        raise WriteError(path, reason)
     t0 = time.perf_counter()
 
     def step(i: int, text: str) -> None:

@@ -3,7 +3,8 @@
 Text is kept as small HTML fragments (``k<sub>c</sub>``), which both the PDF writer (through
 ``QTextDocument``) and the HTML writer understand.  Numbers are printed by :func:`num`, and
 :attr:`ReportContent.numbers` keeps the raw values next to their printed text, so tests can
-check that the report says what the analysis computed.
+check that the report says what the analysis computed.  Each section is a function that returns
+a :class:`~app.report.model.Part` (its sections, numbers and results); :func:`gather` joins them.
 """
 
 from __future__ import annotations
@@ -11,24 +12,18 @@ from __future__ import annotations
 import datetime as _dt
 import html
 import math
-import re
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from analysis.profiles.io import Profile
-from analysis.study import citations
-from app.report.identify_section import identification_sections
-from app.report.zwidth_section import zwidth_sections
+from analysis.profiles import Profile
 from analysis.study import (
     HEADLINE_KEYS,
-    PARAMETER_LABELS,
     Headline,
+    citations,
     design_chart,
     designs,
     display_kind,
-    format_number,
     map_params,
     map_point,
     scenario_title,
@@ -36,21 +31,23 @@ from analysis.study import (
     simulation_section,
     stability_map,
 )
+from app.report.identify_section import identification_part
+from app.report.model import (
+    DIGITS,
+    Numbers,
+    Part,
+    ReportCancelled,
+    ReportContent,
+    Row,
+    Section,
+    num,
+    row,
+    symbol_html,
+)
+from app.report.zwidth_section import zwidth_part
 
-__all__ = ["ReportContent", "Section", "Row", "ReportCancelled", "gather", "num", "symbol_html", "app_version", "METHODS"]
-
-DIGITS = 6
-
-
-class ReportCancelled(Exception):
-    pass
-
-
-def num(x: Any, digits: int = DIGITS, *, rich: bool = False) -> str:
-    """A number as the report prints it (``inf`` -> ``unbounded``, ``None`` -> ``infeasible``):
-    :func:`analysis.study.format_number`, the rule the CLI and the GUI use too.  ``rich``: HTML
-    powers of ten (``4.8×10<sup>−8</sup>``) for the page; the plain text is for the number table."""
-    return format_number(x, digits, rich=rich)
+__all__ = ["ReportContent", "Section", "Row", "ReportCancelled", "gather", "num", "symbol_html", "app_version",
+           "METHODS", "DIGITS"]
 
 
 def app_version() -> str:
@@ -60,41 +57,6 @@ def app_version() -> str:
         return metadata.version("zwidth")
     except metadata.PackageNotFoundError:
         return "unknown (not installed)"
-
-
-@dataclass(frozen=True)
-class Row:
-    """One table row: quantity, symbol (HTML), value (printed), unit."""
-
-    label: str
-    symbol: str
-    value: str
-    unit: str = ""
-
-
-@dataclass(frozen=True)
-class Section:
-    title: str
-    paragraphs: tuple[str, ...] = ()
-    rows: tuple[Row, ...] = ()
-    after: tuple[str, ...] = ()
-
-
-@dataclass(frozen=True)
-class ReportContent:
-    title: str
-    profile: Profile
-    source: str | None
-    date: str
-    version: str
-    sections: tuple[Section, ...]
-    methods: tuple[str, ...]
-    numbers: dict[str, tuple[float | None, str]]
-    headline: Headline
-    results: dict[str, Any] = field(default_factory=dict)
-
-    def printed(self, key: str) -> str:
-        return self.numbers[key][1]
 
 
 METHODS = (
@@ -124,103 +86,6 @@ METHODS = (
 )
 
 
-def symbol_html(name: str) -> str:
-    """A swept parameter's symbol in HTML (``kobj`` -> k<sub>obj</sub>)."""
-    text = html.escape(PARAMETER_LABELS.get(name, (name, ""))[0])
-    return re.sub(r"_(\w+)", r"<sub>\1</sub>", text)
-
-
-def _row(numbers: dict, key: str, label: str, symbol: str, value: Any, unit: str = "") -> Row:
-    text = num(value)
-    numbers[key] = (None if value is None else float(value), text)
-    return Row(label, symbol, num(value, rich=True), unit)
-
-
-def _device_rows(profile: Profile, numbers: dict) -> tuple[Row, ...]:
-    dev = profile.device
-    rows: list[Row] = []
-    for i, m in enumerate(dev.masses):
-        rows.append(_row(numbers, f"device.mass[{i}]", f"mass {i + 1}", f"<i>m</i><sub>{i + 1}</sub>", m, "kg"))
-    for i, k in enumerate(dev.stiffnesses):
-        rows.append(_row(numbers, f"device.stiffness[{i}]", f"stiffness {i + 1}&ndash;{i + 2}",
-                         f"<i>k</i><sub>{i + 1}</sub>", k, "N/m"))
-    for i, b in enumerate(dev.dampings):
-        rows.append(_row(numbers, f"device.damping[{i}]", f"damping {i + 1}&ndash;{i + 2}",
-                         f"<i>b</i><sub>{i + 1}</sub>", b, "N&middot;s/m"))
-    for i, z in enumerate(dev.damping_ratios):
-        rows.append(_row(numbers, f"device.damping_ratio[{i}]", f"damping ratio {i + 1}&ndash;{i + 2}",
-                         f"&zeta;<sub>{i + 1}</sub>", z, ""))
-    for i, g in enumerate(dev.ground_dampings):
-        rows.append(_row(numbers, f"device.ground_damping[{i}]", f"damping to ground at mass {i + 1}",
-                         f"<i>g</i><sub>{i + 1}</sub>", g, "N&middot;s/m"))
-    s = int(dev.sensor_element)
-    numbers["device.sensor_element"] = (float(s), str(s + 1))
-    rows.append(Row("force sensor on element", "", str(s + 1), "(1 = next to the handle)"))
-    return tuple(rows)
-
-
-def _sampled(profile: Profile, res: dict, numbers: dict) -> Section | None:
-    """The app's sampled-data stability map (:func:`analysis.study.stability_map`, its default
-    axes and ranges for the display) and the profile's scenario."""
-    if profile.simulation is None:
-        return None
-    params = map_params(profile)
-    smap = stability_map(profile, params)
-    res["map"] = smap
-    res["map_point"] = map_point(profile, params["x"], params["y"])
-    sec = simulation_section(profile)
-    opt, sc = sec.options, sec.scenario
-    out = simulation(profile)
-    res["simulation"] = out
-    stable_share = float(np.mean(smap.spectral_radius <= 1.0))
-    rows = (
-        Row("scenario", "", "", html.escape(scenario_title(str(sc.name)))),
-        _row(numbers, "simulation.duration", "duration", "", float(out.t[-1]), "s"),
-        Row("verdict", "", html.escape(out.verdict.kind), html.escape(out.verdict.reason)),
-        _row(numbers, "simulation.peak_position", "largest |handle position|", "",
-             float(np.max(np.abs(out.positions[:, 0]))) * 1e3, "mm"),
-        _row(numbers, "simulation.peak_force", "largest |actuator force|", "", float(np.max(np.abs(out.f_d))), "N"),
-        _row(numbers, "map.stable_share", "stable share of the map", "", 100.0 * stable_share, "%"),
-        Row("delay", "", str(opt.delay_samples), "sample(s)" + (", plus computation delay"
-                                                            if opt.implementation_delay else "")),
-    )
-    n = params["points"]
-    return Section("Sampled-data checks", (
-        "The exact sampled loop (zero-order hold, the profile's delays) on the app's "
-        f"{n}&times;{n} stability map ({symbol_html(params['x'])} &times; {symbol_html(params['y'])}), and the "
-        "profile's scenario simulated in the time domain.",), rows)
-
-
-def _wall(profile: Profile, res: dict, numbers: dict) -> Section | None:
-    st = profile.wall
-    if st is None:
-        return None
-    from analysis.transparency.design import WallDesign
-
-    wd = WallDesign.from_settings(st, profile.device if st.plant == "chain" else None)
-    curves = wd.tradeoff()
-    best = wd.optimal_damping()
-    res["tradeoff"] = curves
-    res["optimum"] = best
-    if math.isfinite(best.bc):
-        res["step"] = wd.step_response(best.bc)
-    rows = (
-        _row(numbers, "wall.mass", "device mass", "<i>m</i>", st.mass, "kg"),
-        _row(numbers, "wall.damping", "device damping", "<i>b</i>", st.damping, "N&middot;s/m"),
-        _row(numbers, "wall.wall_stiffness", "virtual wall stiffness", "<i>K</i>", st.wall_stiffness, "N/m"),
-        _row(numbers, "wall.wall_damping", "virtual wall damping", "<i>B</i>", st.wall_damping, "N&middot;s/m"),
-        Row("hold model", "", html.escape(st.hold), ""),
-        _row(numbers, "wall.alpha", "uncertainty weight", "&alpha;, &beta;", st.alpha, f"{num(st.beta)}"),
-        _row(numbers, "wall.optimum.bc", "optimal controller damping", "<i>B</i><sub>c</sub>", best.bc, "N&middot;s/m"),
-        _row(numbers, "wall.optimum.index", "transparency index at the optimum", "<i>J</i>", best.index, ""),
-        _row(numbers, "wall.optimum.peak", "robustness peak at the optimum",
-             "&#8214;<i>L</i>&#8214;<sub>&infin;</sub>", best.peak, ""),
-        _row(numbers, "wall.optimum.peak_frequency", "at frequency", "", best.peak_frequency, "rad/s"),
-    )
-    after = () if best.feasible else (f"No feasible B<sub>c</sub>: {html.escape(best.reason)}",)
-    return Section("Transparency and robust stability (Eom, Suh &amp; Yi)", (), rows, after)
-
-
 #: report number keys and HTML symbols of the headline quantities (labels and units: the study's)
 _VERDICT_ROWS = {
     "stable": ("verdict.stable", ""), "stability_reserve": ("verdict.relative_margin", ""),
@@ -241,86 +106,182 @@ _DESIGN_ROWS = {
 }
 
 
-def _headline_rows(h: Headline, numbers: dict, table: dict[str, tuple[str, str]],
-                   keys: tuple[str, ...]) -> tuple[Row, ...]:
-    """Rows of headline quantities, printed by :meth:`analysis.study.Quantity.number`."""
+
+def _device(profile: Profile) -> Part:
+    dev = profile.device
+    numbers: Numbers = {}
+    rows: list[Row] = []
+    for i, m in enumerate(dev.masses):
+        rows.append(row(numbers, f"device.mass[{i}]", f"mass {i + 1}", f"<i>m</i><sub>{i + 1}</sub>", m, "kg"))
+    for i, k in enumerate(dev.stiffnesses):
+        rows.append(row(numbers, f"device.stiffness[{i}]", f"stiffness {i + 1}&ndash;{i + 2}",
+                        f"<i>k</i><sub>{i + 1}</sub>", k, "N/m"))
+    for i, b in enumerate(dev.dampings):
+        rows.append(row(numbers, f"device.damping[{i}]", f"damping {i + 1}&ndash;{i + 2}",
+                        f"<i>b</i><sub>{i + 1}</sub>", b, "N&middot;s/m"))
+    for i, z in enumerate(dev.damping_ratios):
+        rows.append(row(numbers, f"device.damping_ratio[{i}]", f"damping ratio {i + 1}&ndash;{i + 2}",
+                        f"&zeta;<sub>{i + 1}</sub>", z, ""))
+    for i, g in enumerate(dev.ground_dampings):
+        rows.append(row(numbers, f"device.ground_damping[{i}]", f"damping to ground at mass {i + 1}",
+                        f"<i>g</i><sub>{i + 1}</sub>", g, "N&middot;s/m"))
+    s = int(dev.sensor_element)
+    numbers["device.sensor_element"] = (float(s), str(s + 1))
+    rows.append(Row("force sensor on element", "", str(s + 1), "(1 = next to the handle)"))
+    return Part((Section("Device", ("Masses from the handle (1) to the actuator; element <i>i</i> joins mass "
+                                    "<i>i</i> and mass <i>i</i>+1.",), tuple(rows)),), numbers)
+
+
+def _sampling(profile: Profile) -> Part:
+    dev = profile.device
+    numbers: Numbers = {}
+    rows = (
+        row(numbers, "sample_time", "sample period", "<i>T</i>", dev.sample_time, "s"),
+        row(numbers, "band.min", "lowest analysed frequency", "&omega;<sub>min</sub>", dev.band_min, "rad/s"),
+        row(numbers, "band.max", "Nyquist frequency &pi;/<i>T</i>", "&omega;<sub>N</sub>", dev.nyquist, "rad/s"),
+    )
+    return Part((Section("Sampling and analysis band", (), rows),), numbers)
+
+
+def _sampled(profile: Profile) -> Part:
+    """The app's sampled-data stability map (:func:`analysis.study.stability_map`, its default
+    axes and ranges for the display) and the profile's scenario."""
+    if profile.simulation is None:
+        return Part()
+    params = map_params(profile)
+    smap = stability_map(profile, params)
+    sec = simulation_section(profile)
+    opt, sc = sec.options, sec.scenario
+    out = simulation(profile)
+    numbers: Numbers = {}
+    stable_share = float(np.mean(smap.spectral_radius <= 1.0))
+    rows = (
+        Row("scenario", "", "", html.escape(scenario_title(str(sc.name)))),
+        row(numbers, "simulation.duration", "duration", "", float(out.t[-1]), "s"),
+        Row("verdict", "", html.escape(out.verdict.kind), html.escape(out.verdict.reason)),
+        row(numbers, "simulation.peak_position", "largest |handle position|", "",
+            float(np.max(np.abs(out.positions[:, 0]))) * 1e3, "mm"),
+        row(numbers, "simulation.peak_force", "largest |actuator force|", "", float(np.max(np.abs(out.f_d))), "N"),
+        row(numbers, "map.stable_share", "stable share of the map", "", 100.0 * stable_share, "%"),
+        Row("delay", "", str(opt.delay_samples), "sample(s)" + (", plus computation delay"
+                                                            if opt.implementation_delay else "")),
+    )
+    n = params["points"]
+    section = Section("Sampled-data checks", (
+        "The exact sampled loop (zero-order hold, the profile's delays) on the app's "
+        f"{n}&times;{n} stability map ({symbol_html(params['x'])} &times; {symbol_html(params['y'])}), and the "
+        "profile's scenario simulated in the time domain.",), rows)
+    results = {"map": smap, "map_point": map_point(profile, params["x"], params["y"]), "simulation": out}
+    return Part((section,), numbers, results)
+
+
+def _wall(profile: Profile) -> Part:
+    st = profile.wall
+    if st is None:
+        return Part()
+    from analysis.transparency.design import WallDesign
+
+    wd = WallDesign.from_settings(st, profile.device if st.plant == "chain" else None)
+    curves = wd.tradeoff()
+    best = wd.optimal_damping()
+    results: dict[str, Any] = {"tradeoff": curves, "optimum": best}
+    if math.isfinite(best.bc):
+        results["step"] = wd.step_response(best.bc)
+    numbers: Numbers = {}
+    rows = (
+        row(numbers, "wall.mass", "device mass", "<i>m</i>", st.mass, "kg"),
+        row(numbers, "wall.damping", "device damping", "<i>b</i>", st.damping, "N&middot;s/m"),
+        row(numbers, "wall.wall_stiffness", "virtual wall stiffness", "<i>K</i>", st.wall_stiffness, "N/m"),
+        row(numbers, "wall.wall_damping", "virtual wall damping", "<i>B</i>", st.wall_damping, "N&middot;s/m"),
+        Row("hold model", "", html.escape(st.hold), ""),
+        row(numbers, "wall.alpha", "uncertainty weight", "&alpha;, &beta;", st.alpha, f"{num(st.beta)}"),
+        row(numbers, "wall.optimum.bc", "optimal controller damping", "<i>B</i><sub>c</sub>", best.bc, "N&middot;s/m"),
+        row(numbers, "wall.optimum.index", "transparency index at the optimum", "<i>J</i>", best.index, ""),
+        row(numbers, "wall.optimum.peak", "robustness peak at the optimum",
+            "&#8214;<i>L</i>&#8214;<sub>&infin;</sub>", best.peak, ""),
+        row(numbers, "wall.optimum.peak_frequency", "at frequency", "", best.peak_frequency, "rad/s"),
+    )
+    after = () if best.feasible else (f"No feasible B<sub>c</sub>: {html.escape(best.reason)}",)
+    return Part((Section("Transparency and robust stability (Eom, Suh &amp; Yi)", (), rows, after),), numbers,
+                results)
+
+
+def _headline_part(h: Headline, table: dict[str, tuple[str, str]], keys: tuple[str, ...], title: str,
+                   paragraphs: tuple[str, ...] = ()) -> Part:
+    """A section of headline quantities, printed by :meth:`analysis.study.Quantity.number`."""
+    numbers: Numbers = {}
     rows = []
     for key in keys:
         if key not in table:
             continue
         q, value = h.quantity(key), h.value(key)
-        text = q.number(value)
-        numbers[table[key][0]] = (None if value is None else float(value), text)
+        numbers[table[key][0]] = (None if value is None else float(value), q.number(value))
         rows.append(Row(q.name, table[key][1], q.number(value, rich=True), html.escape(q.unit)))
-    return tuple(rows)
+    return Part((Section(title, paragraphs, tuple(rows)),), numbers)
 
 
-def _controller(profile: Profile, numbers: dict) -> Section:
+def _controller(profile: Profile) -> Part:
     kind = display_kind(profile)
+    numbers: Numbers = {}
     rows = [Row("display type", "", kind.name, f"({kind.causality})")]
     for gain in kind.gains:
         sym = f"<i>{gain.symbol[0]}</i><sub>{gain.symbol[2:]}</sub>"
-        rows.append(_row(numbers, f"coupling.{gain.symbol.replace('_', '')}", gain.label, sym,
-                         getattr(profile, gain.field), html.escape(gain.unit)))
+        rows.append(row(numbers, f"coupling.{gain.symbol.replace('_', '')}", gain.label, sym,
+                        getattr(profile, gain.field), html.escape(gain.unit)))
     rows += [
-        _row(numbers, "pd.kp", "PD position-loop stiffness", "<i>k</i><sub>p</sub>", profile.kp, "N/m"),
-        _row(numbers, "pd.kd", "PD position-loop damping", "<i>k</i><sub>d</sub>", profile.kd, "N&middot;s/m"),
+        row(numbers, "pd.kp", "PD position-loop stiffness", "<i>k</i><sub>p</sub>", profile.kp, "N/m"),
+        row(numbers, "pd.kd", "PD position-loop damping", "<i>k</i><sub>d</sub>", profile.kd, "N&middot;s/m"),
     ]
     after = ("The PD gains act only in the admittance display (eq. 30).",) if kind.is_impedance else ()
-    return Section("Display and controller", (), tuple(rows), after)
+    return Part((Section("Display and controller", (), tuple(rows), after),), numbers)
 
 
-def _verdict(h: Headline, profile: Profile, numbers: dict) -> Section:
+def _verdict(h: Headline, profile: Profile) -> Part:
     dev = profile.device
     verdict_text = f"<b>{h.question}: {'unconditionally stable' if h.stable else 'NOT unconditionally stable'}</b>"
-    rows = _headline_rows(h, numbers, _VERDICT_ROWS, HEADLINE_KEYS)
-    return Section("Verdict", (
+    return _headline_part(h, _VERDICT_ROWS, HEADLINE_KEYS, "Verdict", (
         f"{verdict_text} for every passive operator and environment, over the band "
-        f"[{num(dev.band_min)}, {num(dev.nyquist)}) rad/s.",), rows)
+        f"[{num(dev.band_min)}, {num(dev.nyquist)}) rad/s.",))
 
 
-def _designs(h: Headline, numbers: dict) -> Section:
+def _designs(h: Headline) -> Part:
     eq = f"eq. {h.kind.bound_equation}"
     if h.kind.is_impedance:
         par = f"Largest k<sub>c</sub> satisfying {eq} at the profile's b<sub>c</sub> (design chart below)."
     else:
         par = f"Couplings (m<sub>c</sub>, b<sub>c</sub>) satisfying {eq} (design chart below)."
-    return Section("Design results", (par,), _headline_rows(h, numbers, _DESIGN_ROWS, h.kind.design_keys))
+    return _headline_part(h, _DESIGN_ROWS, h.kind.design_keys, "Design results", (par,))
 
 
 def gather(profile: Profile, *, source: str | None = None, sampled: bool = True,
            date: str | None = None) -> ReportContent:
     """All numbers and results of one report, from :mod:`analysis.study` (no computation here)."""
-    numbers: dict[str, tuple[float | None, str]] = {}
     kind = display_kind(profile)
     disp = kind.build(profile)
     stab = kind.evaluate(profile, disp)
     h = Headline.from_result(stab, designs(profile, kind, disp))
-    res: dict[str, Any] = {"stability": stab, "chart": design_chart(profile), "chart_point": kind.chart_point(profile)}
-    dev = profile.device
-    sampling = Section("Sampling and analysis band", (), (
-        _row(numbers, "sample_time", "sample period", "<i>T</i>", dev.sample_time, "s"),
-        _row(numbers, "band.min", "lowest analysed frequency", "&omega;<sub>min</sub>", dev.band_min, "rad/s"),
-        _row(numbers, "band.max", "Nyquist frequency &pi;/<i>T</i>", "&omega;<sub>N</sub>", dev.nyquist, "rad/s"),
-    ))
-    zrange = Section("Impedance range (Z-width)", (), _headline_rows(h, numbers, _RANGE_ROWS, HEADLINE_KEYS))
-    sections = [Section("Device", ("Masses from the handle (1) to the actuator; element <i>i</i> joins mass "
-                                   "<i>i</i> and mass <i>i</i>+1.",), _device_rows(profile, numbers)),
-                sampling, _controller(profile, numbers), _verdict(h, profile, numbers), _designs(h, numbers), zrange]
-    for sec in (_wall(profile, res, numbers), _sampled(profile, res, numbers) if sampled else None):
-        if sec is not None:
-            sections.append(sec)
-    sections += identification_sections(profile, res, numbers)  # issue 14: only with the section
-    sections += zwidth_sections(profile, res, numbers)  # issue 15: only with the controller section
+    parts = [
+        Part(results={"stability": stab, "chart": design_chart(profile), "chart_point": kind.chart_point(profile)}),
+        _device(profile), _sampling(profile), _controller(profile), _verdict(h, profile), _designs(h),
+        _headline_part(h, _RANGE_ROWS, HEADLINE_KEYS, "Impedance range (Z-width)"),
+        _wall(profile), _sampled(profile) if sampled else Part(),
+        identification_part(profile),  # issue 14: only with the identification section
+        zwidth_part(profile),  # issue 15: only with the controller section
+    ]
+    numbers: Numbers = {}
+    results: dict[str, Any] = {}
+    for part in parts:
+        numbers.update(part.numbers)
+        results.update(part.results)
     return ReportContent(
         title=f"Haptic interface design report: {html.escape(profile.name)}",
         profile=profile,
         source=source,
         date=date or _dt.datetime.now().strftime("%Y-%m-%d %H:%M"),
         version=app_version(),
-        sections=tuple(sections),
+        sections=tuple(sec for part in parts for sec in part.sections),
         methods=METHODS,
         numbers=numbers,
         headline=h,
-        results=res,
+        results=results,
     )

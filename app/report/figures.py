@@ -3,7 +3,8 @@
 The bound plot, the impedance range plot and the design chart are the very
 :class:`~app.views.base.PlotView` classes of the main window.  The app has no view yet for
 the transparency curves, the sampled-data map and the scenario, so they are small
-:class:`PlotView` subclasses here, with the same axes, fonts and palette.
+:class:`~app.report.plots.CurvesPlot` plots, with the same axes, fonts and palette.  The
+identification and Z-width figures are built by :mod:`.identify_figures` and :mod:`.zwidth_figures`.
 """
 
 from __future__ import annotations
@@ -12,27 +13,27 @@ import html
 import math
 import os
 import sys
-from dataclasses import dataclass
 
 from app import qt_compat  # noqa: F401 - before any Qt call
 
 import numpy as np
-import pyqtgraph as pg
 from PySide6.QtCore import Qt, qInstallMessageHandler
 from PySide6.QtGui import QFont, QGuiApplication
 from PySide6.QtWidgets import QApplication
 
 from analysis.study import display_kind, scenario_title
-from app.views.base import PlotView, Series, clean_xy, rich_label
+from app.views.base import PlotView, rich_label
 from app.views.design_chart import DesignChart
 from app.views.range_plot import RangePlot
 from app.views.stability_map import StabilityMapView
 from app.views.stability_plot import StabilityPlot
-from app.report.content import ReportContent, num, symbol_html
-from app.report.identify_section import FIGURE_KEYS as IDENTIFY_FIGURES, identify_figure
-from app.report.zwidth_section import FIGURE_KEYS as ZWIDTH_FIGURES, zwidth_figure
+from app.report.identify_figures import FIGURE_KEYS as IDENTIFY_FIGURES, identify_figure
+from app.report.model import Figure, ReportContent, num, symbol_html
+from app.report.plots import CurvesPlot
+from app.report.zwidth_figures import FIGURE_KEYS as ZWIDTH_FIGURES, zwidth_figure
 
-__all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "CurvesPlot"]
+__all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "FIGURE_KEYS", "CurvesPlot",
+           "quiet_messages"]
 
 #: size (px at 96 dpi) the views are laid out at; the PDF scales them to the text width
 FIG_SIZE = (658, 350)
@@ -47,14 +48,18 @@ def ensure_app() -> QApplication:
             os.environ["QT_QPA_PLATFORM"] = "offscreen"
         app = QApplication(sys.argv[:1])
         if QGuiApplication.platformName() == "offscreen":
-            qInstallMessageHandler(_quiet)
+            qInstallMessageHandler(quiet_messages)
     return app
 
 
-def _quiet(mode, context, message: str) -> None:
-    """Drop the offscreen platform's "does not support propagateSizeHints()" noise; pass the rest on."""
+def quiet_messages(mode: object, context: object, message: str) -> None:
+    """A Qt message handler: drops the offscreen platform's "does not support propagateSizeHints()"
+    noise and writes the rest to stderr."""
     if "propagateSizeHints" not in message:
         sys.stderr.write(message + "\n")
+
+
+_quiet = quiet_messages  # the earlier private name
 
 
 def _unhinted(view: PlotView) -> None:
@@ -68,49 +73,6 @@ def _unhinted(view: PlotView) -> None:
                 continue
             f.setHintingPreference(QFont.HintingPreference.PreferNoHinting)
             item.setFont(f)
-
-
-@dataclass
-class Figure:
-    key: str
-    title: str
-    caption: str
-    view: PlotView
-
-
-class CurvesPlot(PlotView):
-    """Named curves on shared axes (report figures the app has no view for)."""
-
-    def __init__(self, title: str, x: tuple[str, str], y: tuple[str, str], log_x: bool = False,
-                 log_y: bool = False) -> None:
-        super().__init__(title)
-        self.set_log(log_x, log_y)
-        self.set_axis_labels(x[0], x[1], y[0], y[1])
-        self._series: list[Series] = []
-
-    def add(self, name: str, x, y, color: str, style: Qt.PenStyle = Qt.PenStyle.SolidLine, width: float = 2.0,
-            symbol: str | None = None) -> None:
-        lx, ly = self.is_log()
-        xs, ys, _ = clean_xy(np.asarray(x, float), np.asarray(y, float), lx, ly)
-        if symbol:
-            item = pg.PlotDataItem(xs, ys, pen=None, symbol=symbol, symbolSize=10, symbolBrush=color,
-                                   symbolPen="w", name=name)
-            item.setZValue(20)
-            self.plot.addItem(item)
-        else:
-            item = self.curve(name, color, width, style)
-            item.setData(xs, ys)
-        self._series.append(Series(name, f"{self.x_name} ({self.x_unit})", f"{self.y_name} ({self.y_unit})", xs, ys))
-
-    def hline(self, y: float, label: str) -> None:
-        pos = math.log10(y) if self.is_log()[1] else y
-        line = pg.InfiniteLine(pos=pos, angle=0, movable=False,
-                               pen=pg.mkPen("#c92a2a", width=1, style=Qt.PenStyle.DotLine),
-                               label=label, labelOpts={"position": 0.08, "color": "#c92a2a"})
-        self.plot.addItem(line, ignoreBounds=True)
-
-    def export_series(self) -> list[Series]:
-        return list(self._series)
 
 
 def _prepare(view: PlotView, size: tuple[int, int] = FIG_SIZE) -> PlotView:

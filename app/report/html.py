@@ -8,11 +8,10 @@ import re
 
 from app import qt_compat  # noqa: F401 - before any Qt call
 
-
-from app.report.content import ReportContent
-from app.views.export import svg_bytes
-from app.report.figures import Figure
+from analysis.profiles import atomic_write
+from app.report.model import Figure, ReportContent
 from app.report.pdf import section_html
+from app.views.export import svg_bytes
 
 __all__ = ["write_html", "svg_text", "report_html"]
 
@@ -77,7 +76,5 @@ def report_html(content: ReportContent, figures: list[Figure]) -> str:
 
 
 def write_html(content: ReportContent, figures: list[Figure], path: str | os.PathLike) -> None:
-    tmp = os.fspath(path) + ".part"
-    with open(tmp, "w", encoding="utf-8") as f:
-        f.write(report_html(content, figures))
-    os.replace(tmp, path)
+    """Write the HTML report with :func:`analysis.profiles.atomic_write` (raises its ``WriteError``)."""
+    atomic_write(path, report_html(content, figures))

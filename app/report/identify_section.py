@@ -1,12 +1,10 @@
 """The report's identification part (issue 14), when the profile has an ``identification`` section.
 
-* :func:`identification_sections` (Qt-free, called by :func:`app.report.content.gather`): the
-  measurements, the parameter table with the 95 % intervals, and the robust designs (robust
-  largest k_c at the current b_c against the nominal one, with the binding device; or the robust
-  b_c interval on the admittance display), computed by :mod:`analysis.study.identify`;
-* :func:`identify_figure` (needs Qt; the figure builders of :mod:`app.report.figures`): measured
-  against model magnitude (``identify``) and phase (``identify_phase``) of the embedded
-  measurements, the model being the profile's device.
+:func:`identification_part` (Qt-free, called by :func:`app.report.content.gather`): the
+measurements, the parameter table with the 95 % intervals, and the robust designs (robust largest
+k_c at the current b_c against the nominal one, with the binding device; or the robust b_c interval
+on the admittance display), computed by :mod:`analysis.study.identify`.  Its figures (needing Qt)
+are in :mod:`app.report.identify_figures`.
 """
 
 from __future__ import annotations
@@ -15,12 +13,12 @@ import html
 import re
 from typing import Any
 
-from analysis.profiles.io import Profile
-from analysis.study import bode_data, fit_curves, format_number, robust_designs
+from analysis.profiles import Profile
+from analysis.study import RobustDesigns, fit_curves, format_number, robust_designs
+from app.report.model import Numbers, Part, Row, Section
 
-__all__ = ["FIGURE_KEYS", "identification_sections", "identify_figure", "parameter_label"]
+__all__ = ["identification_part", "parameter_label"]
 
-FIGURE_KEYS = ("identify", "identify_phase")
 _NAMES = {"masses": ("mass {}", "kg"), "stiffnesses": ("stiffness {}&ndash;{}", "N/m"),
           "dampings": ("damping {}&ndash;{}", "N&middot;s/m"),
           "ground_dampings": ("damping to ground at mass {}", "N&middot;s/m")}
@@ -40,9 +38,7 @@ def _value(profile: Profile, key: str) -> float:
     return float(getattr(profile.device, match.group(1))[int(match.group(2))])
 
 
-def _rows(profile: Profile, numbers: dict) -> tuple:
-    from app.report.content import Row
-
+def _rows(profile: Profile, numbers: Numbers) -> tuple[Row, ...]:
     rows = []
     for key, (lo, hi) in profile.identification.intervals.items():
         label, unit = parameter_label(key)
@@ -56,11 +52,7 @@ def _rows(profile: Profile, numbers: dict) -> tuple:
     return tuple(rows)
 
 
-def _robust_rows(profile: Profile, res: dict, numbers: dict) -> tuple[tuple, str]:
-    from app.report.content import Row
-
-    rd = robust_designs(profile)
-    res["robust"] = rd
+def _robust_rows(rd: RobustDesigns | None, numbers: Numbers) -> tuple[tuple[Row, ...], str]:
     if rd is None:
         return (), ""
     rows = []
@@ -91,14 +83,14 @@ def _robust_rows(profile: Profile, res: dict, numbers: dict) -> tuple[tuple, str
     return tuple(rows), f"<b class='{cls}'>{verdict}</b>"
 
 
-def identification_sections(profile: Profile, res: dict, numbers: dict) -> list[Any]:
-    """The report's sections on the profile's identification (empty without one)."""
-    from app.report.content import Section
-
+def identification_part(profile: Profile) -> Part:
+    """The report's sections on the profile's identification (empty without one); results
+    ``identify_curves`` (the measured and model responses) and ``robust``."""
     sec = profile.identification
     if sec is None:
-        return []
-    res["identify_curves"] = fit_curves(profile)
+        return Part()
+    numbers: Numbers = {}
+    results: dict[str, Any] = {"identify_curves": fit_curves(profile), "robust": robust_designs(profile)}
     names = ", ".join(f"{html.escape(m.source or f'measurement {i + 1}')} ({m.quantity}, handle {m.boundary}, "
                       f"{m.frequency.size} points, {'continuous' if m.sample_time is None else 'sampled'})"
                       for i, m in enumerate(sec.measurements))
@@ -112,7 +104,7 @@ def identification_sections(profile: Profile, res: dict, numbers: dict) -> list[
         notes = ("<b>What the fit said</b> about these measurements:",
                  *(f"&bull;&nbsp;{html.escape(t)}" for t in sec.notes))
     out = [Section("Identification", (par,), _rows(profile, numbers), notes)]
-    rows, verdict = _robust_rows(profile, res, numbers)
+    rows, verdict = _robust_rows(results["robust"], numbers)
     if verdict and not rows:  # unbounded intervals: no box, and the reason
         out.append(Section("Designs that hold for the whole parameter box", (
             "A robust design needs every interval bounded; these measurements leave some open.",),
@@ -122,28 +114,4 @@ def identification_sections(profile: Profile, res: dict, numbers: dict) -> list[
             "The worst case over every device in the box of intervals above (screening, corners, a seeded "
             "random sample and a bounded local search; the worst case is not always a corner).",),
             rows, (verdict,)))
-    return out
-
-
-def identify_figure(content: Any, key: str) -> Any:
-    """The measured-against-model Bode figure (``identify`` magnitude, ``identify_phase`` phase)."""
-    from PySide6.QtCore import Qt
-
-    from app.report.figures import CurvesPlot, Figure
-
-    pairs = content.results.get("identify_curves")
-    if not pairs:
-        return None
-    data = bode_data(pairs)
-    unit = "N/N" if pairs[0][0].quantity == "gauge" else "m/N"
-    if key == "identify":
-        v = CurvesPlot("Identification: magnitude", ("ω", "rad/s"), ("|H|", unit), log_x=True, log_y=True)
-        v.add("measured", data.w, data.measured_mag, "#868e96", width=3.0)
-        v.add("model (profile's device)", data.w, data.model_mag, "#1f5fbf", style=Qt.PenStyle.DashLine)
-        cap = ("Measured frequency responses (embedded in the profile) and the response of the profile's "
-               "device at the same frequencies: magnitude.")
-        return Figure(key, "Identification fit: magnitude", cap, v)
-    v = CurvesPlot("Identification: phase", ("ω", "rad/s"), ("∠H", "°"), log_x=True)
-    v.add("measured", data.w, data.measured_phase, "#868e96", width=3.0)
-    v.add("model (profile's device)", data.w, data.model_phase, "#1f5fbf", style=Qt.PenStyle.DashLine)
-    return Figure(key, "Identification fit: phase", "Measured and model phase, unwrapped per measurement.", v)
+    return Part(tuple(out), numbers, results)

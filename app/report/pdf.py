@@ -17,10 +17,10 @@ from app import qt_compat  # noqa: F401 - before any Qt call
 from PySide6.QtCore import QMarginsF, QRectF, QSizeF, Qt
 from PySide6.QtGui import QColor, QFont, QPageLayout, QPageSize, QPainter, QPdfWriter, QPen, QTextDocument
 
+from analysis.profiles import atomic_write
 from analysis.profiles.files import unwritable_reason
 
-from app.report.content import ReportContent
-from app.report.figures import Figure
+from app.report.model import Figure, ReportContent
 
 __all__ = ["write_pdf", "PAGE_SIZES"]
 
@@ -188,14 +188,18 @@ def _frame(painter: QPainter, content: ReportContent, page: QSizeF, width: float
 
 def write_pdf(content: ReportContent, figures: list[Figure], path: str | os.PathLike,
               page_size: str = "a4") -> int:
-    """Write the PDF report; returns the page count."""
+    """Write the PDF report with :func:`analysis.profiles.atomic_write` (Qt's writer renders to its
+    temporary file); returns the page count.  Raises its ``WriteError`` when the file cannot be written."""
     if page_size not in PAGE_SIZES:
         raise ValueError(f"page size must be one of {', '.join(PAGE_SIZES)}, got {page_size!r}")
-    reason = unwritable_reason(path)
-    if reason is not None:  # before Qt's writer, which only says "QPainter::begin(): Returned false"
-        raise OSError(reason)
-    tmp = os.fspath(path) + ".part"
-    writer = QPdfWriter(tmp)
+    pages: list[int] = []
+    atomic_write(path, lambda tmp: pages.append(_render(content, figures, tmp, page_size)))
+    return pages[0]
+
+
+def _render(content: ReportContent, figures: list[Figure], path: str, page_size: str) -> int:
+    """Draw the report into a new PDF file at ``path``; returns the page count."""
+    writer = QPdfWriter(path)
     writer.setResolution(DPI)
     writer.setPageLayout(QPageLayout(QPageSize(PAGE_SIZES[page_size]), QPageLayout.Orientation.Portrait,
                                      QMarginsF(0, 0, 0, 0)))
@@ -205,7 +209,7 @@ def write_pdf(content: ReportContent, figures: list[Figure], path: str | os.Path
     width = page.width() - 2 * MARGIN_X
     pages = _paginate(_blocks(content, figures, width, writer), page.height() - MARGIN_TOP - MARGIN_BOTTOM)
     painter = QPainter()
-    if not painter.begin(writer):
+    if not painter.begin(writer):  # Qt gives no reason: "QPainter::begin(): Returned false"
         raise OSError(unwritable_reason(path) or "the PDF writer cannot open the file")
     try:
         for n, blist in enumerate(pages, 1):
@@ -220,6 +224,5 @@ def write_pdf(content: ReportContent, figures: list[Figure], path: str | os.Path
                 y += b.height
     finally:
         painter.end()
-    del writer
-    os.replace(tmp, path)
+    del writer  # the file is complete once the writer is gone
     return len(pages)

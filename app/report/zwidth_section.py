@@ -1,12 +1,9 @@
 """The report's Z-width part (issue 15), when the profile has a ``controller`` section.
 
-* :func:`zwidth_sections` (Qt-free, called by :func:`app.report.content.gather`): the velocity
-  filter, the exact (B, K) region's areas (Colgate & Brown, ICRA 1994), the optimum cut-off
-  (Chawda, Celik & O'Malley 2015) and the trials the analysis gets wrong, computed by
-  :mod:`analysis.study.zwidth`;
-* :func:`zwidth_figure` (needs Qt; a figure builder of :mod:`app.report.figures`): the app's own
-  :class:`~app.views.zwidth_region_view.ZWidthRegionView` (``zwidth_region``) and
-  :class:`~app.views.filter_optimum_view.FilterOptimumView` (``filter_optimum``).
+Qt-free: :func:`zwidth_part` (called by :func:`app.report.content.gather`) gives the velocity
+filter, the exact (B, K) region's areas (Colgate & Brown, ICRA 1994), the optimum cut-off (Chawda,
+Celik & O'Malley 2015) and the trials the analysis gets wrong, computed by
+:mod:`analysis.study.zwidth`.  Its figures (needing Qt) are in :mod:`app.report.zwidth_figures`.
 """
 
 from __future__ import annotations
@@ -16,7 +13,7 @@ import math
 from typing import Any
 
 from analysis.errors import ValidationError
-from analysis.profiles.io import Profile
+from analysis.profiles import Profile
 from analysis.study import (
     controller_section,
     filter_optimum,
@@ -26,42 +23,41 @@ from analysis.study import (
     region_wall,
     zwidth_region,
 )
+from app.report.model import Numbers, Part, Row, Section
 
-__all__ = ["FIGURE_KEYS", "zwidth_results", "zwidth_sections", "zwidth_figure"]
+__all__ = ["zwidth_results", "zwidth_part"]
 
-FIGURE_KEYS = ("zwidth_region", "filter_optimum")
 _HZ = 1.0 / (2.0 * math.pi)
 
 
-def zwidth_results(profile: Profile, res: dict) -> None:
-    """Compute the region, the optimum and the scored trials into ``res`` (keys ``zwidth_*``).
+def zwidth_results(profile: Profile) -> dict[str, Any]:
+    """The region, the optimum and the scored trials (keys ``zwidth_region``, ``zwidth_optimum``,
+    ``zwidth_study``).
 
-    A trials file that cannot be read is reported in ``res["zwidth_trials_error"]``, not raised."""
+    A trials file that cannot be read is reported under ``zwidth_trials_error``, not raised."""
     region = zwidth_region(profile)
-    res["zwidth_region"] = region
-    res["zwidth_optimum"] = filter_optimum(profile)
+    res: dict[str, Any] = {"zwidth_region": region, "zwidth_optimum": filter_optimum(profile)}
     try:
         trials = profile_trials(profile)
     except ValidationError as err:
         trials, res["zwidth_trials_error"] = None, str(err)
     res["zwidth_study"] = trial_score(region, trials)
+    return res
 
 
-def _row(numbers: dict, key: str, label: str, value: float, unit: str) -> Any:
-    from app.report.content import Row
-
+def _row(numbers: Numbers, key: str, label: str, value: float, unit: str) -> Row:
     text = format_number(value)
     numbers[key] = (value, text)
     return Row(label, "", text, unit)
 
 
-def zwidth_sections(profile: Profile, res: dict, numbers: dict) -> list[Any]:
-    """The report's section on the controller as built (empty without a ``controller`` section)."""
-    from app.report.content import Section
-
+def zwidth_part(profile: Profile) -> Part:
+    """The report's section on the controller as built (empty without a ``controller`` section),
+    with :func:`zwidth_results` as its results."""
     if profile.controller is None:
-        return []
-    zwidth_results(profile, res)
+        return Part()
+    res = zwidth_results(profile)
+    numbers: Numbers = {}
     sec, region, opt, study = controller_section(profile), res["zwidth_region"], res["zwidth_optimum"], \
         res["zwidth_study"]
     b, k = region_wall(profile)
@@ -96,29 +92,5 @@ def zwidth_sections(profile: Profile, res: dict, numbers: dict) -> list[Any]:
         after.extend(html.escape(line) for line in s.describe(study.trials))
     if "zwidth_trials_error" in res:
         after.append(f"Trials file not read: {html.escape(res['zwidth_trials_error'])}")
-    return [Section("Controller as built: Z-width region and velocity filter", (par,), tuple(rows), tuple(after))]
-
-
-def zwidth_figure(content: Any, key: str) -> Any:
-    """The region (``zwidth_region``) or the area against the cut-off (``filter_optimum``)."""
-    from app.report.figures import Figure
-    from app.views.filter_optimum_view import FilterOptimumView
-    from app.views.zwidth_region_view import ZWidthRegionView
-
-    res = content.results
-    if "zwidth_region" not in res:
-        return None
-    if key == "zwidth_region":
-        v = ZWidthRegionView()
-        study = res["zwidth_study"]
-        v.update_region(res["zwidth_region"], study.trials, study.score)
-        b, k = region_wall(content.profile)
-        v.update_point(b, k, res["zwidth_region"].stable(b, k))
-        cap = ("Exact stable region of the virtual wall in the (B, K) plane (shaded), the passive region "
-               "(dashed), eq. (9)'s limit (dash-dotted), the hardware trials and the current wall.")
-        return Figure(key, "Z-width region (B, K)", cap, v)
-    v2 = FilterOptimumView()
-    v2.update_optimum(res["zwidth_optimum"])
-    v2.update_filter(controller_section(content.profile).velocity_filter)
-    cap = "Area of the stable region against the velocity filter's cut-off; the star is the optimum."
-    return Figure(key, "Z-width area against the filter cut-off", cap, v2)
+    return Part((Section("Controller as built: Z-width region and velocity filter", (par,), tuple(rows),
+                         tuple(after)),), numbers, res)

@@ -13,8 +13,10 @@ import csv
 import io
 import os
 
-from PySide6.QtCore import QByteArray, QBuffer, QIODevice, QRectF, QSaveFile, QSize
+from PySide6.QtCore import QByteArray, QBuffer, QIODevice, QRectF, QSize
 from PySide6.QtGui import QColor, QImage, QPainter
+
+from analysis.profiles import WriteError, atomic_write
 
 from app.views.base import PlotView
 
@@ -28,15 +30,11 @@ class ExportError(OSError):
 
 
 def _write_atomic(path: str | os.PathLike, data: bytes) -> None:
-    f = QSaveFile(os.fspath(path))
-    if not f.open(QIODevice.OpenModeFlag.WriteOnly):
-        raise ExportError(f"cannot write {path}: {f.errorString()}")
-    if f.write(data) != len(data):
-        err = f.errorString()
-        f.cancelWriting()
-        raise ExportError(f"cannot write {path}: {err}")
-    if not f.commit():
-        raise ExportError(f"cannot write {path}: {f.errorString()}")
+    """:func:`analysis.profiles.atomic_write`, its error as an :class:`ExportError`."""
+    try:
+        atomic_write(path, data)
+    except WriteError as err:
+        raise ExportError(str(err)) from err
 
 
 def _source(view: PlotView) -> QRectF:

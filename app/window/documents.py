@@ -2,22 +2,28 @@
 
 :class:`Documents` owns the file path and the preset name, keeps the window title
 (``name[*] — zwidth``) and asks before unsaved changes are lost.  Loading replaces the model's
-profile and clears the undo stack; saving writes atomically (``QSaveFile``).
+profile and clears the undo stack; saving writes atomically (:func:`analysis.profiles.save_profile`).
 """
 
 from __future__ import annotations
 
-import json
 import os
 from collections.abc import Callable
 from pathlib import Path
 
-from PySide6.QtCore import QIODevice, QObject, QSaveFile, Slot
+from PySide6.QtCore import QObject, Slot
 from PySide6.QtGui import QDropEvent, QUndoStack
 from PySide6.QtWidgets import QFileDialog, QMainWindow, QMenu, QMessageBox
 
-from analysis.profiles.io import Profile, ProfileError, bundled_profiles, load_profile, profile_to_dict
-from analysis.profiles.files import unwritable_reason
+from analysis.profiles import (
+    Profile,
+    ProfileError,
+    WriteError,
+    atomic_write,
+    bundled_profiles,
+    load_profile,
+    save_profile,
+)
 
 from app.core.model import ProfileModel
 from app.core.settings import Settings
@@ -43,17 +49,12 @@ def is_bundled(path: str | os.PathLike) -> bool:
 
 
 def write_atomically(path: str, data: bytes) -> str | None:
-    """Write ``data`` to ``path`` through a ``QSaveFile``; returns the reason on failure (the OS's:
-    ``"No such folder: …"``, :func:`analysis.profiles.files.unwritable_reason`, else Qt's)."""
-    f = QSaveFile(path)
-    if not f.open(QIODevice.OpenModeFlag.WriteOnly):
-        return unwritable_reason(path) or f.errorString()
-    if f.write(data) != len(data):
-        reason = f.errorString()
-        f.cancelWriting()
-        return reason
-    if not f.commit():
-        return f.errorString()
+    """Write ``data`` to ``path`` with :func:`analysis.profiles.atomic_write`; returns the reason on
+    failure, in words (``"No such folder: …"``), or ``None``."""
+    try:
+        atomic_write(path, data)
+    except WriteError as err:
+        return err.strerror
     return None
 
 
@@ -176,15 +177,12 @@ class Documents(QObject):
         self.settings.set_last_directory(os.path.dirname(os.path.abspath(path)))
 
     def save_to(self, path: str) -> bool:
-        """Write the profile atomically; on failure say why and keep the edits."""
+        """Write the profile atomically (:func:`analysis.profiles.save_profile`); on failure say
+        why and keep the edits."""
         try:
-            data = (json.dumps(profile_to_dict(self.model.profile), indent=2, allow_nan=False) + "\n").encode()
-        except (TypeError, ValueError) as exc:
-            QMessageBox.critical(self.window, "Cannot save profile", f"{path}: {exc}")
-            return False
-        reason = write_atomically(path, data)
-        if reason is not None:
-            QMessageBox.critical(self.window, "Cannot save profile", f"{path}: {reason}\n\nYour changes are kept.")
+            save_profile(self.model.profile, path)
+        except ProfileError as err:
+            QMessageBox.critical(self.window, "Cannot save profile", f"{err}\n\nYour changes are kept.")
             return False
         self.path, self.preset = os.path.abspath(path), None
         self.stack.setClean()
