@@ -9,6 +9,9 @@ for the real sampled loop:
   :func:`critical_mass` / :func:`critical_mass_chart` for the admittance display's m_c;
 * :func:`worst_case` -- worst spectral radius over human grasps x environments;
 * :func:`stability_map` -- spectral radius over two parameters in one batched sweep;
+* :func:`is_stable` / :data:`STABILITY_TOLERANCE` -- the one stability rule (spectral radius at
+  most ``1 + 1e-12``); :func:`discrete_plants` -- the exact ZOH plant, computed once per device
+  and grasps (cached by value) and shared by every sweep over gains;
 * :func:`passivity_limit` -- Colgate & Schenkel's exact passivity limit of a rigid device;
 * :class:`VelocityFilter` -- the controller's velocity estimate (backward difference, optionally
   low-pass filtered), accepted by every analysis with a damping term;
@@ -88,6 +91,7 @@ __all__ = [
     "CONSTRAINT",
     "ComparisonRun",
     "ConstraintCausality",
+    "CROSSING_RTOL",
     "CriticalChart",
     "CriticalMassChart",
     "DISPLAY_LOOPS",
@@ -111,6 +115,7 @@ __all__ = [
     "PenaltyCausality",
     "RIGID_GRASP",
     "SCENARIOS",
+    "STABILITY_TOLERANCE",
     "Scenario",
     "SimulationOptions",
     "SimulationResult",
@@ -134,11 +139,13 @@ __all__ = [
     "default_terminations",
     "estimate_noise",
     "detect",
+    "discrete_plants",
     "discretize_zoh",
     "display_loop",
     "free_motion",
     "god_object_wall",
     "hbfd_options",
+    "is_stable",
     "linear_stability_limit",
     "load_trials",
     "noise_gain",
@@ -158,6 +165,7 @@ __all__ = [
     "simulate",
     "spectral_radius",
     "stability_map",
+    "stable_end",
     "virtual_wall",
     "worst_case",
     "zwidth_region",
@@ -173,12 +181,12 @@ _LAZY = {
     **dict.fromkeys(("ComparisonRun", "PassivityComparison", "passivity_comparison"), ".pc_compare"),
     **dict.fromkeys(("FilterOptimum", "MeasuredTrials", "TrialScore", "load_trials", "optimal_filter",
                      "score_trials"), ".trials"),
-    **dict.fromkeys(("LoopSpec", "closed_loop_matrices", "discretize_zoh", "plant_matrices", "spectral_radius"),
-                    ".loop"),
+    **dict.fromkeys(("LoopSpec", "STABILITY_TOLERANCE", "closed_loop_matrices", "discrete_plants", "discretize_zoh",
+                     "is_stable", "plant_matrices", "spectral_radius"), ".loop"),
     **dict.fromkeys(("CriticalChart", "CriticalMassChart", "SimulationResult", "StabilityMap", "Verdict",
                      "WorstCase"), ".results"),
-    **dict.fromkeys(("MAP_PARAMETERS", "critical_mass", "critical_mass_chart", "critical_stiffness",
-                     "critical_stiffness_chart", "radii", "stability_map", "worst_case"), ".sweeps"),
+    **dict.fromkeys(("CROSSING_RTOL", "MAP_PARAMETERS", "critical_mass", "critical_mass_chart", "critical_stiffness",
+                     "critical_stiffness_chart", "radii", "stability_map", "stable_end", "worst_case"), ".sweeps"),
     **dict.fromkeys(("Simulator", "detect", "simulate"), ".simulator"),
 }
 

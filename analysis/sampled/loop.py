@@ -27,6 +27,15 @@ object.
 A computation delay of ``d`` samples holds the force computed at step ``k`` on
 ``[(k+d)T, (k+d+1)T)``.
 
+The discretized plant depends on the device (its parameters and sample time) and the grasps
+only, not on the controller, its gains, delay or velocity filter, nor the environment:
+:func:`discrete_plants` computes it once for a device and a tuple of grasps and keeps the last
+:data:`PLANT_CACHE_SIZE` results (keyed by value: every device parameter and every grasp; sets of
+plants over :data:`PLANT_CACHE_BYTES` are not kept), so a sweep over gains needs one ``expm``.
+
+Stability: a loop is stable when its spectral radius is at most ``1 +``
+:data:`STABILITY_TOLERANCE` (:func:`is_stable`), the one rule of every sweep, result and view.
+
 The same controller steps serve the closed-loop matrices below (coefficient rows) and the
 nonlinear simulator (floats), so both use one implementation of the architectures.
 """
@@ -35,6 +44,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 from types import SimpleNamespace
 from typing import Any
 
@@ -68,11 +78,41 @@ __all__ = [
     "closed_loop_matrices",
     "spectral_radius",
     "RIGID_TOL",
+    "STABILITY_TOLERANCE",
+    "is_stable",
+    "discrete_plants",
+    "PLANT_CACHE_SIZE",
+    "PLANT_CACHE_BYTES",
 ]
 
 #: Eigenvalues closer than this to z = 1 are rigid-body (translation) or integrator modes of free
 #: motion (a free mass has a double pole at z = 1 in position coordinates); they count as |z| = 1.
 RIGID_TOL = 1e-6
+#: A loop is stable when its spectral radius is at most ``1 + STABILITY_TOLERANCE`` (round-off of
+#: the eigenvalues of a marginally stable loop, e.g. an undamped mode, may put it just above 1).
+STABILITY_TOLERANCE = 1e-12
+#: How many sets of discretized plants :func:`discrete_plants` keeps (least recently used first out).
+PLANT_CACHE_SIZE = 16
+#: The largest set of discretized plants (bytes of ``Ad`` and ``Bd``) that is kept: 16 entries of
+#: at most 2 MiB bound the cache at 32 MiB (one grasp of a 100-mass chain is 0.3 MiB).
+PLANT_CACHE_BYTES = 2 << 20
+
+
+def is_stable(rho: np.ndarray | float) -> np.ndarray | bool:
+    """Whether spectral radii are stable: ``rho <= 1 + STABILITY_TOLERANCE`` (NaN is not).
+
+    Parameters
+    ----------
+    rho : float or numpy.ndarray
+        Spectral radii of closed-loop matrices (:func:`spectral_radius`).
+
+    Returns
+    -------
+    bool or numpy.ndarray
+        A bool for a scalar, a boolean array of the shape of ``rho`` otherwise.
+    """
+    ok = np.asarray(rho, dtype=float) <= 1.0 + STABILITY_TOLERANCE
+    return bool(ok) if ok.ndim == 0 else ok
 
 
 @dataclass(frozen=True)
@@ -122,6 +162,44 @@ def plant_matrices(device: Device, grasps: Sequence[Grasp] | None = None,
     grasps = list(grasps) if grasps is not None else [Grasp()]
     return chain_state_space(device, [g.mass for g in grasps], [g.damping for g in grasps],
                              [g.stiffness for g in grasps], friction_damping)
+
+
+def _zoh_plants(device: Device, grasps: tuple[Grasp, ...]) -> tuple[np.ndarray, np.ndarray]:
+    Ad, Bd = discretize_zoh(*plant_matrices(device, grasps), device.sample_time)
+    Ad.flags.writeable = False
+    Bd.flags.writeable = False
+    return Ad, Bd
+
+
+_cached_zoh_plants = lru_cache(maxsize=PLANT_CACHE_SIZE)(_zoh_plants)
+
+
+def discrete_plants(device: Device, grasps: Sequence[Grasp] | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The exact ZOH plants of :func:`plant_matrices`, one per grasp, read-only.
+
+    One batched ``expm`` (:func:`analysis.chain.discretize.discretize_zoh`) for all grasps.  The
+    result depends on nothing else, so it is cached by value (the device's every parameter,
+    sample time included, and the grasps; module docstring): the sweeps over gains, delays or
+    filters of one device reuse it, and a changed device or grasp is a different key.  Sets
+    larger than :data:`PLANT_CACHE_BYTES` are computed and not kept.
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    grasps : sequence of Grasp, optional
+        The grasps on the handle (default: hands-off only).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(Ad, Bd)``, shapes (G, 2n, 2n) and (G, 2n, 2), inputs ``(F_d, F_ext)``; not writeable.
+    """
+    gs = (Grasp(),) if grasps is None else tuple(grasps)
+    N = 2 * device.n
+    if len(gs) * N * (N + 2) * 8 > PLANT_CACHE_BYTES:
+        return _zoh_plants(device, gs)
+    return _cached_zoh_plants(device, gs)
 
 
 def sensor_rows(device: Device) -> tuple[np.ndarray, np.ndarray]:
@@ -209,9 +287,9 @@ def closed_loop_matrices(device: Device, spec: LoopSpec, terminations: Sequence[
     loop = spec.loop
     T = device.sample_time
     if plants is None:
-        grasps = [t.grasp for t in terms]
-        Ad, Bd = discretize_zoh(*plant_matrices(device, grasps), T)
-        plant_index = np.arange(len(terms))
+        grasps: dict[Grasp, int] = {}
+        plant_index = np.array([grasps.setdefault(t.grasp, len(grasps)) for t in terms])
+        Ad, Bd = discrete_plants(device, tuple(grasps))
     else:
         Ad, Bd = plants
     Ad, Bd = Ad[plant_index], Bd[plant_index, :, 0]

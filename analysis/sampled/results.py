@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from analysis.sampled.loop import is_stable
 from analysis.sampled.terminations import Termination
 
 __all__ = ["WorstCase", "CriticalChart", "CriticalMassChart", "StabilityMap", "Verdict", "SimulationResult"]
@@ -15,8 +16,10 @@ __all__ = ["WorstCase", "CriticalChart", "CriticalMassChart", "StabilityMap", "V
 class WorstCase:
     """Worst spectral radius over a sweep of terminations and the termination attaining it.
 
-    ``radii[i]`` belongs to ``terminations[i]``; ``stable`` is ``spectral_radius <= 1``
-    (rigid-body modes at z = 1 count as 1, see :func:`analysis.sampled.loop.spectral_radius`).
+    ``radii[i]`` belongs to ``terminations[i]``; ``stable`` is
+    :func:`~analysis.sampled.loop.is_stable` of ``spectral_radius`` (at most 1 up to the
+    stability tolerance; rigid-body modes at z = 1 count as 1, see
+    :func:`analysis.sampled.loop.spectral_radius`).
     """
 
     spectral_radius: float
@@ -64,7 +67,8 @@ class StabilityMap:
 
     @property
     def stable(self) -> np.ndarray:
-        return self.spectral_radius <= 1.0 + 1e-12
+        """Where the loop is stable (:func:`~analysis.sampled.loop.is_stable`)."""
+        return np.asarray(is_stable(self.spectral_radius))
 
 
 @dataclass(frozen=True)

@@ -10,10 +10,14 @@ Critical couplings
 The spectral radius is not monotone in the coupling gains: it can dip below 1 again above a
 first unstable k_c (stable windows), and it can touch 1 from below without crossing.  The
 critical value reported is the *first* crossing: a geometric scan from the safe end (small
-k_c, large m_c) with 24 points per decade, in one batch, and then bisection (60 halvings)
-between the last stable and the first unstable scan point.  An unstable window narrower than
-one scan step (10 % in the parameter) can be missed; :func:`stability_map` shows the whole
-picture.
+k_c, large m_c) with 24 points per decade, in one batch, and then the crossing between the last
+stable and the first unstable scan point by Brent's method (``scipy.optimize.brentq`` on
+``rho - 1 - STABILITY_TOLERANCE``, :func:`stable_end`) to a relative bracket of
+:data:`CROSSING_RTOL` (1e-12).  The value reported is the *stable* end of the final bracket, a
+gain whose spectral radius was computed and found stable, below every gain found unstable
+(conservative).  An unstable window narrower than one scan step (10 % in the parameter) can be
+missed; :func:`stability_map` shows the whole picture.  The plant is discretized once per device
+and grasp (:func:`analysis.sampled.loop.discrete_plants`), not once per gain.
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ import math
 from collections.abc import Callable, Sequence
 
 import numpy as np
+from scipy import optimize
 
 from analysis.chain.device import Device
 from analysis.chain.limits import MAX_MAP_POINTS, check_count
@@ -29,7 +34,14 @@ from analysis.chain.velocity_filter import VelocityFilter
 from analysis.checks import nonnegative, positive
 from analysis.errors import ValidationError
 from analysis.sampled.controllers import display_loop
-from analysis.sampled.loop import LoopSpec, closed_loop_matrices, discretize_zoh, plant_matrices, spectral_radius
+from analysis.sampled.loop import (
+    STABILITY_TOLERANCE,
+    LoopSpec,
+    closed_loop_matrices,
+    discrete_plants,
+    is_stable,
+    spectral_radius,
+)
 from analysis.sampled.results import CriticalChart, CriticalMassChart, StabilityMap, WorstCase
 from analysis.sampled.terminations import (
     CAUSALITIES,
@@ -52,10 +64,13 @@ __all__ = [
     "critical_mass_chart",
     "stability_map",
     "MAP_PARAMETERS",
+    "CROSSING_RTOL",
+    "stable_end",
 ]
 
-_UNSTABLE = 1.0 + 1e-12
 _PER_DECADE = 24
+#: Relative width of the final bracket of a stability crossing (Brent's ``xtol``/``rtol``).
+CROSSING_RTOL = 1e-12
 
 
 def radii(device: Device, spec: LoopSpec, terminations: Sequence[Termination],
@@ -67,7 +82,7 @@ def radii(device: Device, spec: LoopSpec, terminations: Sequence[Termination],
         return out
     grasps: dict[Grasp, int] = {}
     gidx = np.array([grasps.setdefault(t.grasp, len(grasps)) for t in terms])
-    plants = discretize_zoh(*plant_matrices(device, list(grasps)), device.sample_time)
+    plants = discrete_plants(device, tuple(grasps))
     for caus in CAUSALITIES:  # one batch of closed-loop matrices per environment causality
         sel = np.array([i for i, t in enumerate(terms) if t.environment.causality == caus], dtype=int)
         if sel.size == 0:
@@ -94,32 +109,97 @@ def worst_case(device: Device, display: str = "impedance", coupling: tuple[float
         raise ValidationError("terminations", "at least one termination", [])
     r = radii(device, spec, terms)
     i = int(np.argmax(r))
-    return WorstCase(spectral_radius=float(r[i]), termination=terms[i], index=i, stable=bool(r[i] <= _UNSTABLE),
+    return WorstCase(spectral_radius=float(r[i]), termination=terms[i], index=i, stable=bool(is_stable(r[i])),
                      radii=r, terminations=terms)
 
 
+def stable_end(g: Callable[[float], float], safe: float, unsafe: float, rtol: float = CROSSING_RTOL,
+               g_safe: float | None = None, g_unsafe: float | None = None) -> float:
+    """The stable end of the crossing of ``g`` in ``[safe, unsafe]`` (``g(safe) <= 0 < g(unsafe)``).
+
+    Brent's method (``scipy.optimize.brentq``) shrinks the bracket to a relative width ``rtol``;
+    every value of ``g`` is kept, and the result is the evaluated point nearest to the smallest
+    (from ``safe``) point found unstable among those found stable below it: the stable end of
+    the final bracket, never a point beyond one where ``g > 0`` (conservative; Brent keeps a
+    sign-changing bracket and evaluates inside it only, so the points found stable all lie
+    below those found unstable, whatever the sign changes of ``g`` inside).  A point where ``g``
+    is exactly 0 (the spectral radius equals ``1 + STABILITY_TOLERANCE`` to the last bit; Brent
+    stops there, short of ``rtol``) is stable and is the result.
+
+    Parameters
+    ----------
+    g : callable
+        ``g(x) -> float``, stable where ``<= 0`` (e.g. ``rho(x) - 1 - STABILITY_TOLERANCE``).
+    safe, unsafe : float
+        The bracket: ``g(safe) <= 0 < g(unsafe)``; ``safe`` may be above ``unsafe`` (a
+        decreasing scan).  Both nonzero and of one sign.
+    rtol : float, optional
+        Relative width of the final bracket (default :data:`CROSSING_RTOL`, 1e-12; at least
+        ``4 eps``, Brent's limit).
+    g_safe, g_unsafe : float, optional
+        The known values of ``g`` at the ends (not recomputed).
+
+    Returns
+    -------
+    float
+        A point where ``g <= 0``, within ``2 rtol`` (relative) of one where ``g > 0`` (unless
+        ``g`` is 0 there), and below (from ``safe``) every point found unstable.
+    """
+    seen: dict[float, float] = {}
+    if g_safe is not None:
+        seen[float(safe)] = float(g_safe)
+    if g_unsafe is not None:
+        seen[float(unsafe)] = float(g_unsafe)
+
+    def h(x: float) -> float:
+        if x not in seen:
+            seen[x] = float(g(x))
+        return seen[x]
+
+    d = 1.0 if unsafe > safe else -1.0  # scan direction: d x increases from safe to unsafe
+    lo, hi = sorted((float(safe), float(unsafe)))
+    optimize.brentq(h, lo, hi, xtol=rtol * lo, rtol=rtol)
+    # Brent evaluates inside its bracket only, so the final bracket is this pair of points
+    u = min((x for x, v in seen.items() if v > 0), key=lambda x: d * x)
+    return max((x for x, v in seen.items() if v <= 0 and d * (u - x) > 0), key=lambda x: d * x)
+
+
 def _first_crossing(f, lo: float, hi: float, increasing: bool) -> float:
-    """First parameter value (scanning from the safe end) where ``f`` (batched) exceeds 1."""
+    """First parameter value (scanning from the safe end) where ``f`` (batched) is unstable.
+
+    The scan grid is evaluated a decade (:data:`_PER_DECADE` points) per batch and stops at the
+    first batch with an unstable point (the same grid and first point as one batch of all)."""
     n = max(int(math.ceil(_PER_DECADE * math.log10(hi / lo))), 2) + 1
     grid = np.geomspace(lo, hi, n)
     if not increasing:
         grid = grid[::-1]
-    bad = f(grid) > _UNSTABLE
-    if not bad.any():
+    for start in range(0, n, _PER_DECADE):
+        rho = f(grid[start:start + _PER_DECADE])
+        bad = ~np.asarray(is_stable(rho))
+        if bad.any():
+            break
+    else:
         return math.inf if increasing else 0.0
-    j = int(np.argmax(bad))
+    j = start + int(np.argmax(bad))
     if j == 0:
         return 0.0 if increasing else math.inf
-    safe, unsafe = float(grid[j - 1]), float(grid[j])
-    for _ in range(60):
-        mid = math.sqrt(safe * unsafe)
-        if f(np.array([mid]))[0] > _UNSTABLE:
-            unsafe = mid
-        else:
-            safe = mid
-        if abs(unsafe - safe) <= 1e-12 * safe:
-            break
-    return safe
+    top = 1.0 + STABILITY_TOLERANCE
+    g_safe = float(rho[j - start - 1]) - top if j > start else None
+    return stable_end(lambda x: float(f(np.array([x]))[0]) - top, float(grid[j - 1]), float(grid[j]),
+                      g_safe=g_safe, g_unsafe=float(rho[j - start]) - top)
+
+
+def _radius_of(device: Device, spec: LoopSpec, term: Termination, gain: str) -> Callable[[np.ndarray], np.ndarray]:
+    """Spectral radius of one termination as a (batched) function of one controller gain; the plant
+    is discretized once (:func:`~analysis.sampled.loop.discrete_plants`)."""
+    plants = discrete_plants(device, (term.grasp,))
+
+    def f(values: np.ndarray) -> np.ndarray:
+        Phi = closed_loop_matrices(device, spec, (term,) * values.size, plants, np.zeros(values.size, dtype=int),
+                                   {gain: values})
+        return spectral_radius(Phi)
+
+    return f
 
 
 def critical_stiffness(device: Device, bc: float, delay_samples: int = 0, *, environment: Environment | None = None,
@@ -138,13 +218,9 @@ def critical_stiffness(device: Device, bc: float, delay_samples: int = 0, *, env
     """
     nonnegative("bc", bc, "N s/m")
     env = god_object_wall() if environment is None else environment
-    term = (Termination(grasp, env),)
-
-    def f(ks: np.ndarray) -> np.ndarray:
-        spec = LoopSpec("impedance", (1.0, float(bc)), delay_samples=delay_samples,
-                        implementation_delay=implementation_delay, velocity_filter=velocity_filter)
-        return radii(device, spec, term * ks.size, {"kc": ks})
-
+    spec = LoopSpec("impedance", (1.0, float(bc)), delay_samples=delay_samples,
+                    implementation_delay=implementation_delay, velocity_filter=velocity_filter)
+    f = _radius_of(device, spec, Termination(grasp, env), "kc")
     return _first_crossing(f, k_range[0], k_range[1], increasing=True)
 
 
@@ -186,12 +262,8 @@ def critical_mass(device: Device, bc: float, pd: tuple[float, float] = (50e3, 10
     """
     positive("bc", bc, "N s/m")
     env = free_motion("impedance") if environment is None else environment
-    term = (Termination(grasp, env),)
-
-    def f(ms: np.ndarray) -> np.ndarray:
-        spec = LoopSpec("admittance", (1.0, float(bc)), pd, delay_samples, implementation_delay, velocity_filter)
-        return radii(device, spec, term * ms.size, {"mc": ms})
-
+    spec = LoopSpec("admittance", (1.0, float(bc)), pd, delay_samples, implementation_delay, velocity_filter)
+    f = _radius_of(device, spec, Termination(grasp, env), "mc")
     return _first_crossing(f, m_range[0], m_range[1], increasing=False)
 
 

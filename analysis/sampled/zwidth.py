@@ -60,7 +60,7 @@ from analysis.chain.device import Device
 from analysis.chain.velocity_filter import BACKWARD, VelocityFilter
 from analysis.checks import Real, integer
 from analysis.errors import ValidationError
-from analysis.sampled.loop import LoopSpec, closed_loop_matrices, discretize_zoh, plant_matrices, spectral_radius
+from analysis.sampled.loop import STABILITY_TOLERANCE, LoopSpec, closed_loop_matrices, discrete_plants, spectral_radius
 from analysis.sampled.passivity import passivity_limits
 from analysis.sampled.terminations import HANDS_OFF, Termination, god_object_wall
 from analysis.sampled.velocity_noise import DEFAULT_FORCE_NOISE, noise_limited_damping
@@ -68,7 +68,7 @@ from analysis.sampled.velocity_noise import DEFAULT_FORCE_NOISE, noise_limited_d
 __all__ = ["ZWidthRegion", "zwidth_region", "stiffness_limits", "noise_limited_stiffness", "region_area", "check_b_values", "OPTIMIZER_AREA",
            "DEFAULT_B"]
 
-_UNSTABLE = 1.0 + 1e-12
+_UNSTABLE = 1.0 + STABILITY_TOLERANCE
 _B = Real(lo=0.0, unit="N s/m")
 #: The area the filter optimizer maximizes (a :class:`ZWidthRegion` attribute name).
 OPTIMIZER_AREA = "area_linear"
@@ -146,7 +146,7 @@ def stiffness_limits(device: Device, b: np.ndarray, delay_samples: int = 0,
                     implementation_delay=implementation_delay, velocity_filter=velocity_filter)
     if velocity_filter is not None:
         velocity_filter.check(device.sample_time)
-    plants = discretize_zoh(*plant_matrices(device, [term.grasp]), device.sample_time)
+    plants = discrete_plants(device, (term.grasp,))
 
     def radius(bs: np.ndarray, ks: np.ndarray) -> np.ndarray:
         Phi = closed_loop_matrices(device, spec, [term] * bs.size, plants, np.zeros(bs.size, dtype=int),
