@@ -34,7 +34,14 @@ from analysis.identify.errors import FitCancelled, MeasurementError, ParameterKe
 from analysis.identify.fit import fit_chain, order_selection
 from analysis.identify.hidden import MERGED_SHARE, HiddenHandle, handle_family, hidden_handle, merged_fit
 from analysis.identify.measurement import Measurement, make_measurement
-from analysis.identify.model import BOUNDARIES, QUANTITIES, continuous_response, response, sampled_response
+from analysis.identify.model import (
+    BOUNDARIES,
+    MEASURED_QUANTITIES,
+    QUANTITIES,
+    continuous_response,
+    response,
+    sampled_response,
+)
 from analysis.identify.params import ChainParameters, device_value, device_with, parameter_keys
 from analysis.identify.problem import FitProblem
 from analysis.identify.profile import Profiler, profile_critical_value
@@ -53,8 +60,9 @@ from analysis.identify.welch import estimate_frf
 __all__ = [
     "BOUNDARIES",
     "INTERVAL_MODES",
+    "MEASURED_QUANTITIES",
     "MERGED_SHARE",
-    "QUANTITIES",
+    "QUANTITIES",  # deprecated alias of MEASURED_QUANTITIES (one release)
     "ChainFit",
     "ChainParameters",
     "FitCancelled",

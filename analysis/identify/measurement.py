@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from analysis.identify.errors import MeasurementError
-from analysis.identify.model import BOUNDARIES, QUANTITIES
+from analysis.identify.model import BOUNDARIES, MEASURED_QUANTITIES
 
 __all__ = ["Measurement", "make_measurement", "MIN_POINTS"]
 
@@ -77,8 +77,8 @@ def make_measurement(frequency, response, quantity: str = "actuator", boundary: 
     """Validate arrays into a :class:`Measurement` (errors are :class:`MeasurementError`)."""
     w = np.asarray(frequency, dtype=float).reshape(-1)
     h = np.asarray(response, dtype=complex).reshape(-1)
-    if quantity not in QUANTITIES:
-        raise MeasurementError(f"quantity {quantity!r} is not one of {', '.join(QUANTITIES)}", file=source)
+    if quantity not in MEASURED_QUANTITIES:
+        raise MeasurementError(f"quantity {quantity!r} is not one of {', '.join(MEASURED_QUANTITIES)}", file=source)
     if boundary not in BOUNDARIES:
         raise MeasurementError(f"boundary {boundary!r} is not one of {', '.join(BOUNDARIES)}", file=source)
     if quantity == "handle" and boundary == "clamped":

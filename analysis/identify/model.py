@@ -36,10 +36,14 @@ import numpy as np
 
 from analysis.identify.params import ChainParameters
 
-__all__ = ["QUANTITIES", "BOUNDARIES", "continuous_response", "sampled_response", "response",
+__all__ = ["MEASURED_QUANTITIES", "QUANTITIES", "BOUNDARIES", "continuous_response", "sampled_response", "response",
            "state_space"]
 
-QUANTITIES = ("actuator", "handle", "gauge")
+#: What a measured frequency response is of: the actuator's, the handle's or the gauge's
+#: (``analysis.study.QUANTITIES`` is another thing: the results zwidth names and prints).
+MEASURED_QUANTITIES = ("actuator", "handle", "gauge")
+#: deprecated alias of :data:`MEASURED_QUANTITIES` (one release)
+QUANTITIES = MEASURED_QUANTITIES
 BOUNDARIES = ("free", "clamped")
 
 
@@ -47,8 +51,8 @@ def check_quantity(quantity: str, boundary: str, n: int, sensor_element: int) ->
     """Refuse combinations without a meaning (a clamped handle does not move, ...)."""
     from analysis.errors import ValidationError
 
-    if quantity not in QUANTITIES:
-        raise ValidationError("quantity", " | ".join(QUANTITIES), quantity)
+    if quantity not in MEASURED_QUANTITIES:
+        raise ValidationError("quantity", " | ".join(MEASURED_QUANTITIES), quantity)
     if boundary not in BOUNDARIES:
         raise ValidationError("boundary", " | ".join(BOUNDARIES), boundary)
     if boundary == "clamped" and (n < 2 or quantity == "handle"):

@@ -31,7 +31,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from analysis.identify import BOUNDARIES, QUANTITIES, Measurement, MeasurementError, parameter_keys
+from analysis.identify import BOUNDARIES, MEASURED_QUANTITIES, Measurement, MeasurementError, parameter_keys
 from analysis.study import load_measurements
 
 __all__ = ["IdentifyPanel", "MAX_MASSES"]
@@ -58,7 +58,7 @@ class IdentifyPanel(QWidget):
         self.error.setWordWrap(True)
         self.error.setStyleSheet("color: #c92a2a")
         self.quantity = QComboBox()
-        self.quantity.addItems(list(QUANTITIES))
+        self.quantity.addItems(list(MEASURED_QUANTITIES))
         self.boundary = QComboBox()
         self.boundary.addItems(list(BOUNDARIES))
         self.sampled = QCheckBox("sampled, T")
