@@ -163,8 +163,8 @@ def _check_icon(app: QApplication) -> QIcon:
 
 
 def _check_about(window: QWidget, app: QApplication) -> None:
-    """The About box renders and reads the package versions."""
-    from app.window.about import AboutDialog
+    """The About box renders and reads the package versions (zwidth's own from its metadata)."""
+    from app.window.about import AboutDialog, app_version
 
     about = AboutDialog(window)
     about.show()
@@ -174,7 +174,7 @@ def _check_about(window: QWidget, app: QApplication) -> None:
     if "not installed" in about.body_label.text():
         _say("note: some dependency versions could not be read")
     about.close()
-    _say("about box ok")
+    _say(f"about box ok: zwidth {app_version()}")
 
 
 def _run() -> int:
