@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 from PySide6.QtCore import QTimer, Slot
-from PySide6.QtWidgets import QLabel, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QLabel, QVBoxLayout
 
 from analysis.study import display_kind
 
 from app.views.base import PlotView
 from app.widgets.colors import CURSOR_COLORS
 from app.views.design_chart import DesignChart
-from app.tabs.base import AnalysisTab, AppContext
+from app.tabs.base import AnalysisTab
 from analysis.study.citations import ADAMS
 from app.widgets.citation_note import CitationNote
 
@@ -22,8 +22,8 @@ class DesignTab(AnalysisTab):
     order = 20
     nodes = frozenset({"design_chart", "stability"})
 
-    def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
-        super().__init__(ctx, parent)
+    def build(self) -> None:
+        ctx = self.ctx
         self.chart = DesignChart()
         self._shown: object = None
         self.hint = hint = QLabel("Click the chart to set the coupling gains (one undo step).  The chart is conservative: "
@@ -38,7 +38,7 @@ class DesignTab(AnalysisTab):
         self.chart.pointPicked.connect(self._on_pick)
         ctx.graph.ready.connect(self._on_ready)
 
-    def refresh(self) -> None:
+    def update_views(self) -> None:
         graph = self.ctx.graph
         fresh = graph.is_fresh("design_chart")
         value = graph.result("design_chart")
@@ -74,12 +74,13 @@ class DesignTab(AnalysisTab):
         edits = display_kind(self.ctx.model.profile).edits_from_chart(x, y)
         self.ctx.editor.edit_many(edits, "Pick gains on the design chart")
 
-    def plot_views(self) -> list[PlotView]:
+    def views(self) -> list[PlotView]:
         return [self.chart]
 
     def apply_theme(self, dark: bool) -> None:
         super().apply_theme(dark)
-        self.hint.setStyleSheet(f"color: {CURSOR_COLORS[1 if dark else 0]};")
+        if self.is_built():
+            self.hint.setStyleSheet(f"color: {CURSOR_COLORS[1 if dark else 0]};")
 
 
 TAB = DesignTab

@@ -9,7 +9,7 @@ __all__ = ["HeldPlots"]
 
 
 class HeldPlots:
-    """Mixin for an :class:`~app.tabs.base.AnalysisTab`; call :meth:`init_held_plots` in ``__init__``."""
+    """Mixin for an :class:`~app.tabs.base.AnalysisTab`; call :meth:`init_held_plots` in ``build``."""
 
     def init_held_plots(self) -> None:
         self._drawn: dict[str, object] = {}  # plot -> the result objects it shows
@@ -27,7 +27,8 @@ class HeldPlots:
         return True
 
     def apply_theme(self, dark: bool) -> None:
-        self._drawn.clear()  # every plot is drawn again in the theme's colours
+        if self.is_built():
+            self._drawn.clear()  # every plot is drawn again in the theme's colours
         super().apply_theme(dark)
 
     def _hold_ranges(self, hold: bool) -> None:

@@ -23,7 +23,7 @@ from app.core import nodes_identify
 from app.core.compute_graph import ComputeGraph
 from app.core.nodes_identify import FIT_NODE, NODES, ROBUST_NODE, fit_params
 from app.panels.identify_panel import IdentifyPanel
-from app.tabs.base import AnalysisTab, AppContext
+from app.tabs.base import AnalysisTab
 from app.views.base import PlotView
 from app.views.bode_view import BodeView, OrderTable, ParameterTable, unit_of
 from app.widgets.node_progress import NodeProgress
@@ -49,8 +49,8 @@ class IdentifyTab(AnalysisTab):
     def register_nodes(cls, graph: ComputeGraph) -> None:
         nodes_identify.register(graph)
 
-    def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
-        super().__init__(ctx, parent)
+    def build(self) -> None:
+        ctx = self.ctx
         nodes_identify.register(ctx.graph)  # idempotent: the window registers it too
         self.panel = IdentifyPanel(ctx.model.device.sample_time)
         self.fit_progress = NodeProgress(ctx.graph, FIT_NODE, "Fitting")
@@ -107,7 +107,7 @@ class IdentifyTab(AnalysisTab):
         lay.addWidget(scroll)
         lay.addWidget(self.bode, 1)
 
-    def plot_views(self) -> list[PlotView]:
+    def views(self) -> list[PlotView]:
         return self.bode.plot_views()
 
     # -- fitting ---------------------------------------------------------------------------------
@@ -184,7 +184,7 @@ class IdentifyTab(AnalysisTab):
                      f"[{_rich(designs.damping.low)}, {_rich(designs.damping.high)}] N·s/m")
         self.robust.setText(f"<b style='color:{color}'>{designs.verdict()}</b>{extra}")
 
-    def refresh(self) -> None:
+    def update_views(self) -> None:
         graph = self.ctx.graph
         out = graph.request(ROBUST_NODE)
         if out is not None and graph.is_fresh(ROBUST_NODE):

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 from PySide6.QtCore import Qt, Slot
-from PySide6.QtWidgets import QGridLayout, QLabel, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QGridLayout, QLabel, QVBoxLayout
 
 from analysis.study import observer_device_label
 from analysis.transparency.observer import ObserverResponse
@@ -28,7 +28,7 @@ from app.panels.observer_panel import ObserverPanel
 from app.views.base import PlotView, fmt
 from app.views.curves_plot import CurvesPlot
 from app.widgets.task_progress import TASK_TITLES
-from app.tabs.base import AnalysisTab, AppContext
+from app.tabs.base import AnalysisTab
 from app.tabs.held_plots import HeldPlots
 from analysis.study.citations import EOM
 from app.widgets.citation_note import CitationNote
@@ -47,8 +47,8 @@ class ObserverTab(HeldPlots, AnalysisTab):
         TASK_TITLES.setdefault("observer_coupling", "Two-axis coupling")
         TASK_TITLES.setdefault("observer_step", "Two-axis step")
 
-    def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
-        super().__init__(ctx, parent)
+    def build(self) -> None:
+        ctx = self.ctx
         self.panel = ObserverPanel(ctx.model, ctx.editor)
         self.fields = self.panel.fields
         self.init_held_plots()
@@ -101,10 +101,10 @@ class ObserverTab(HeldPlots, AnalysisTab):
                                  export_name="y without observers")
         self.step_plot.add_curve("with", "with observers", "b", export_name="y with observers")
 
-    def plot_views(self) -> list[PlotView]:
+    def views(self) -> list[PlotView]:
         return [self.plant_plot, self.disturbance_plot, self.coupling_plot, self.step_plot]
 
-    def refresh(self) -> None:
+    def update_views(self) -> None:
         graph = self.ctx.graph
         st = observer_settings(self.ctx.model.profile)
         self.device_label.setText(observer_device_label(self.ctx.model.profile))

@@ -53,7 +53,7 @@ from app.widgets.node_progress import NodeProgress
 from app.widgets.rich_text_pane import RichTextPane
 from app.widgets.task_progress import TASK_TITLES
 from app.tabs.async_jobs import AsyncJobs
-from app.tabs.base import AnalysisTab, AppContext
+from app.tabs.base import AnalysisTab
 from app.tabs.held_plots import HeldPlots
 from app.widgets.text_pacer import TextPacer
 from analysis.study.citations import ADAMS, HANNAFORD_RYU
@@ -88,8 +88,8 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
         for name in ASYNC_NODES:
             TASK_TITLES.setdefault(name, f"Computing {TITLES[name].lower()}")
 
-    def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
-        super().__init__(ctx, parent)
+    def build(self) -> None:
+        ctx = self.ctx
         self.init_held_plots()
         self.texts = TextPacer(lambda: ctx.graph.interactive, self)  # the summary: 10 Hz during a drag
         self._held: dict[str, Hashable] = {}  # node -> key not to restart (cancelled or failed)
@@ -202,7 +202,7 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
         """"updating…" while computing; while a slider drag holds it back, that it catches up."""
         return "updating after the drag…" if name in self.ctx.graph.waiting() else ""
 
-    def refresh(self) -> None:
+    def update_views(self) -> None:
         g, p = self.ctx.graph, self.ctx.model.profile
         if self.map_panel.display != p.display:  # (rebuilding its fields on every drag step costs)
             self.map_panel.show_display(p.display)
@@ -275,7 +275,7 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
     def cancel(self, name: str) -> None:
         self.ctx.graph.cancel(name)
 
-    def plot_views(self) -> list[PlotView]:
+    def views(self) -> list[PlotView]:
         return [self.map_view, self.exact_view, *self.time_view.plot_views()]
 
     def held_views(self) -> list[PlotView]:

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QComboBox, QHBoxLayout, QLabel, QSplitter, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QComboBox, QHBoxLayout, QLabel, QSplitter, QVBoxLayout
 
 from app.views.base import PlotView
 from app.views.range_plot import RangePlot
 from app.views.stability_plot import VIEW_MODES, StabilityPlot
-from app.tabs.base import AnalysisTab, AppContext
+from app.tabs.base import AnalysisTab
 from analysis.study.citations import ADAMS
 from app.widgets.citation_note import CitationNote
 
@@ -20,8 +20,8 @@ class StabilityTab(AnalysisTab):
     order = 10
     nodes = frozenset({"stability"})
 
-    def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
-        super().__init__(ctx, parent)
+    def build(self) -> None:
+        ctx = self.ctx
         self.stability = StabilityPlot()
         self.range = RangePlot()
         split = QSplitter(Qt.Orientation.Vertical)
@@ -72,7 +72,7 @@ class StabilityTab(AnalysisTab):
         else:
             self.stale = True
 
-    def refresh(self) -> None:
+    def update_views(self) -> None:
         graph = self.ctx.graph
         res = graph.get(graph.stability_name)
         for view in (self.stability, self.range):  # still axes during a drag: only the curves repaint
@@ -82,7 +82,7 @@ class StabilityTab(AnalysisTab):
         self.refreshes += 1
         self.stale = False
 
-    def plot_views(self) -> list[PlotView]:
+    def views(self) -> list[PlotView]:
         return [self.stability, self.range]
 
 

@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 from PySide6.QtCore import Qt, QTimer, Slot
-from PySide6.QtWidgets import QGridLayout, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QGridLayout, QVBoxLayout
 
 from analysis.study import wall_device_label
 from analysis.transparency.settings import StepResponse, WallSettings
@@ -49,7 +49,7 @@ from app.widgets.colors import for_theme
 from app.views.curves_plot import CurvesPlot
 from app.views.wall_summary import inf_spans, wall_summary
 from app.widgets.task_progress import TASK_TITLES
-from app.tabs.base import AnalysisTab, AppContext
+from app.tabs.base import AnalysisTab
 from app.tabs.held_plots import HeldPlots
 from analysis.study.citations import EOM
 from app.widgets.citation_note import CitationNote
@@ -71,8 +71,8 @@ class TransparencyTab(HeldPlots, AnalysisTab):
         TASK_TITLES.setdefault("wall_tradeoff", "Computing J(B_c) and ‖L‖∞(B_c)")
         TASK_TITLES.setdefault("wall_step", "Step response")
 
-    def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
-        super().__init__(ctx, parent)
+    def build(self) -> None:
+        ctx = self.ctx
         # the numbers in the legends and the summary: ten updates a second during a drag
         self.texts = TextPacer(lambda: ctx.graph.interactive, self)
         self.panel = WallPanel(ctx.model, ctx.editor)
@@ -170,11 +170,11 @@ class TransparencyTab(HeldPlots, AnalysisTab):
                                   export_name="human force")
         self.force_plot.add_curve("force", "actuator force u (held)", "b", export_name="actuator force")
 
-    def plot_views(self) -> list[PlotView]:
+    def views(self) -> list[PlotView]:
         return [self.index_plot, self.peak_plot, self.admittance_plot, self.position_plot, self.force_plot]
 
     # -- refresh ------------------------------------------------------------------------------------
-    def refresh(self) -> None:
+    def update_views(self) -> None:
         graph = self.ctx.graph
         for name in AT_BC_NODES:
             graph.set_params(name, bc=self.bc)

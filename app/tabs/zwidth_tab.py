@@ -40,7 +40,7 @@ from app.core import nodes_zwidth
 from app.core.compute_graph import ComputeGraph
 from app.core.nodes_zwidth import OPTIMUM_NODE, REGION_NODE, TRIALS_NODE, ZWIDTH_NODES
 from app.tabs.async_jobs import AsyncJobs
-from app.tabs.base import AnalysisTab, AppContext
+from app.tabs.base import AnalysisTab
 from app.views.base import PlotView
 from app.views.filter_optimum_view import FilterOptimumView
 from app.views.zwidth_region_view import ZWidthRegionView
@@ -75,8 +75,8 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         for name in ZWIDTH_NODES:
             TASK_TITLES.setdefault(name, SHORT_TITLES[name])  # the status bar's label is narrow
 
-    def __init__(self, ctx: AppContext, parent: QWidget | None = None) -> None:
-        super().__init__(ctx, parent)
+    def build(self) -> None:
+        ctx = self.ctx
         self._held: dict[str, Hashable] = {}
         self._errors: dict[str, str] = {}
         self.section = SectionBinding(ctx.model, ctx.editor, "controller", controller_section, "Z-width")
@@ -243,7 +243,7 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
             self._errors[TRIALS_NODE] = f"trials: {err}"
             return None
 
-    def refresh(self) -> None:
+    def update_views(self) -> None:
         p = self.ctx.model.profile
         sec = controller_section(p)
         on = sec.encoder_resolution is not None
@@ -296,7 +296,7 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         if name in ZWIDTH_NODES and self.isVisible():
             self.refresh()
 
-    def plot_views(self) -> list[PlotView]:
+    def views(self) -> list[PlotView]:
         return [self.region_view, self.optimum_view]
 
 

@@ -79,7 +79,8 @@ def _wait_for(window: Any, names: list[str], title: str) -> str | None:
 
 def bring_up_to_date(window: Any, view: PlotView) -> str | None:
     """Compute what ``view`` shows (its tab's graph nodes) and refresh its tab; the reason if it cannot."""
-    tab = next((t for t in getattr(window, "analysis_tabs", []) if view in t.plot_views()), None)
+    # a view exists only once its tab is built: the tabs not built yet are not searched (nor built)
+    tab = next((t for t in getattr(window, "analysis_tabs", []) if t.is_built() and view in t.views()), None)
     if tab is None:
         return None
     pending = _pending(window, tab)

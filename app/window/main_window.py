@@ -90,7 +90,8 @@ class MainWindow(QMainWindow):
         self.analysis_tabs: list[AnalysisTab] = []
         for cls in tab_classes():
             cls.register_nodes(self.graph)
-            tab = cls(self.ctx)
+            tab = cls(self.ctx)  # its widgets and views are built when it is first shown (AnalysisTab)
+            tab.viewsBuilt.connect(lambda t=tab: self._connect_exports(t))
             self.analysis_tabs.append(tab)
             self.tabs.addTab(tab, cls.title)
         self.splitter = QSplitter(Qt.Orientation.Horizontal)
@@ -115,16 +116,23 @@ class MainWindow(QMainWindow):
         self.undo_stack.cleanChanged.connect(self.documents.update_title)
         self.model.profileReplaced.connect(self.documents.update_title)
         self.editor.refused.connect(lambda f, r: self.statusBar().showMessage(f"{f}: {r}", 5000))
-        for view in self.plot_views():
-            view.exportRequested.connect(lambda fmt, v=view: self.export_view(v, fmt))
         QApplication.styleHints().colorSchemeChanged.connect(lambda _s: self.apply_theme())
 
     # -- tabs and views ----------------------------------------------------------------------------
+    def _connect_exports(self, tab: AnalysisTab) -> None:
+        """A plot's right-click export, connected when its tab is built."""
+        for view in tab.views():
+            view.exportRequested.connect(lambda fmt, v=view: self.export_view(v, fmt))
+
     def plot_views(self) -> list[PlotView]:
+        """Every tab's plot views (this builds the tabs not built yet)."""
         return [v for t in self.analysis_tabs for v in t.plot_views()]
 
     def tab(self, cls: type[AnalysisTab]) -> AnalysisTab:
-        return next(t for t in self.analysis_tabs if isinstance(t, cls))
+        """The tab of class ``cls``, built (so that its widgets can be used even while hidden)."""
+        tab = next(t for t in self.analysis_tabs if isinstance(t, cls))
+        tab.ensure_built()
+        return tab
 
     def refresh_visible(self) -> None:
         """Update the verdict and the visible tab from the graph now."""

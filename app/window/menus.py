@@ -18,7 +18,7 @@ from PySide6.QtWidgets import QMainWindow, QMenu, QMenuBar
 from analysis.profiles.io import ProfileError, bundled_profiles, load_profile
 
 __all__ = ["make_action", "WindowActions", "build_menus", "EXPORT_FORMATS", "plain_title", "export_entries",
-           "fill_export_menu"]
+           "tab_export_entries", "fill_export_menu", "fill_tab_export_menu"]
 
 EXPORT_FORMATS = (("png", "PNG image…"), ("svg", "SVG drawing…"), ("csv", "CSV data…"))
 
@@ -79,36 +79,54 @@ def plain_title(text: str) -> str:
     return " ".join(html.unescape(re.sub(r"<[^>]+>", "", text)).split())
 
 
+def tab_export_entries(tab: Any) -> list[tuple[str, Any]]:
+    """[(unique plain plot title, view), ...] for one tab's plots (builds the tab)."""
+    names: list[tuple[str, Any]] = []
+    seen: dict[str, int] = {}
+    for view in tab.plot_views():
+        name = plain_title(view.title) or type(view).__name__
+        seen[name] = seen.get(name, 0) + 1
+        names.append((name if seen[name] == 1 else f"{name} ({seen[name]})", view))
+    return names
+
+
 def export_entries(window: Any) -> list[tuple[str, list[tuple[str, Any]]]]:
-    """(tab title, [(unique plain plot title, view), ...]) for every tab with plots, in tab order."""
+    """(tab title, [(unique plain plot title, view), ...]) for every tab with plots, in tab order (this
+    builds every tab)."""
     out = []
     for tab in window.analysis_tabs:
-        views = tab.plot_views()
-        if not views:
-            continue
-        names: list[tuple[str, Any]] = []
-        seen: dict[str, int] = {}
-        for view in views:
-            name = plain_title(view.title) or type(view).__name__
-            seen[name] = seen.get(name, 0) + 1
-            names.append((name if seen[name] == 1 else f"{name} ({seen[name]})", view))
-        out.append((plain_title(tab.title), names))
+        names = tab_export_entries(tab)
+        if names:
+            out.append((plain_title(tab.title), names))
     return out
 
 
-def fill_export_menu(window: Any, menu: QMenu) -> None:
-    """File → Export: one submenu per tab, one per plot in it, then PNG / SVG / CSV (rebuilt when shown,
-    so a title that follows the display is current)."""
+def _clear_menu(menu: QMenu) -> None:
     for old in menu.findChildren(QMenu, options=Qt.FindChildOption.FindDirectChildrenOnly):
         old.deleteLater()  # the last fill's submenus (clear() keeps them)
     menu.clear()
-    for tab_title, views in export_entries(window):
-        tab_menu = menu.addMenu(tab_title.replace("&", "&&"))
-        for name, view in views:
-            sub = tab_menu.addMenu(name.replace("&", "&&"))
-            for fmt, label in EXPORT_FORMATS:
-                act = sub.addAction(label)
-                act.triggered.connect(lambda _=False, v=view, f=fmt: window.export_view(v, f))
+
+
+def fill_tab_export_menu(window: Any, tab: Any, menu: QMenu) -> None:
+    """One tab's submenu of File → Export: one submenu per plot, then PNG / SVG / CSV.  Filled when it
+    is shown: a tab never opened is built then, not with the window."""
+    _clear_menu(menu)
+    for name, view in tab_export_entries(tab):
+        sub = menu.addMenu(name.replace("&", "&&"))
+        for fmt, label in EXPORT_FORMATS:
+            act = sub.addAction(label)
+            act.triggered.connect(lambda _=False, v=view, f=fmt: window.export_view(v, f))
+
+
+def fill_export_menu(window: Any, menu: QMenu) -> None:
+    """File → Export: one submenu per tab with plots, in tab order, each filled when shown (so a title
+    that follows the display is current, and a tab is built only when its submenu opens)."""
+    _clear_menu(menu)
+    for tab in window.analysis_tabs:
+        if not tab.has_plots():
+            continue
+        tab_menu = menu.addMenu(plain_title(tab.title).replace("&", "&&"))
+        tab_menu.aboutToShow.connect(lambda t=tab, m=tab_menu: fill_tab_export_menu(window, t, m))
 
 
 def _export_menu(window: Any, menu: QMenu) -> None:

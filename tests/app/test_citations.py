@@ -38,6 +38,7 @@ def test_every_tab_carries_the_full_citation_of_its_equation_numbers(win):
             "Disturbance observer"} <= set(titles)
     for i, title in enumerate(titles):
         tab = win.tabs.widget(i)
+        tab.ensure_built()  # a tab never shown has no widgets yet
         notes = _notes(tab)
         assert len(notes) == 1, f"{title}: {len(notes)} citation notes"
         note = notes[0]

@@ -56,6 +56,7 @@ def test_export_menu_action_exports_that_view(win, tmp_path, monkeypatch):
     monkeypatch.setattr(win, "export_view", lambda v, f: calls.append((v, f)))
     win.export_menu.aboutToShow.emit()
     stab = next(a.menu() for a in win.export_menu.actions() if a.text() == StabilityTab.title)
+    stab.aboutToShow.emit()  # a tab's submenu lists its plots when it opens
     plot = next(a.menu() for a in stab.actions() if a.text().startswith("Impedance range"))
     next(a for a in plot.actions() if a.text().startswith("CSV")).trigger()
     assert calls == [(win.tab(StabilityTab).range, "csv")]
