@@ -22,7 +22,7 @@ from PySide6.QtCore import Qt, Slot
 from PySide6.QtWidgets import QScrollArea, QSplitter, QToolButton, QVBoxLayout, QWidget
 
 from analysis.profiles.io import Profile
-from analysis.sampled import StabilityMap
+from analysis.sampled import StabilityMap, is_stable
 from analysis.study import display_kind
 
 from app.core import nodes_sampled
@@ -232,7 +232,7 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
                 self.map_view.update_map(m, subtitle)
             px, py = design_on_map(p, m)
             rho = self.ctx.graph.get(POINT_NODE)  # exact at the current gains, live during a drag
-            self.map_view.update_point(px, py, None if rho is None or math.isnan(rho) else rho <= 1 + 1e-12)
+            self.map_view.update_point(px, py, None if rho is None or math.isnan(rho) else is_stable(rho))
         elif m is not None and self._changed("map", None):
             self.map_view.update_map(None)
         self.map_view.set_busy(self._busy(MAP_NODE), self._busy_text(MAP_NODE))
