@@ -39,9 +39,22 @@ def _reject_duplicates(pairs: list[tuple[str, object]]) -> dict:
 
 
 def read_json(path: str | os.PathLike) -> object:
-    """The parsed JSON of file ``path`` (UTF-8, optional BOM; no NaN, Infinity or duplicate keys).
+    """The parsed JSON of a file (UTF-8, optional BOM; no NaN, Infinity or duplicate keys).
 
-    Raises :class:`ProfileError` and nothing else.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to read.
+
+    Returns
+    -------
+    object
+        The parsed JSON value.
+
+    Raises
+    ------
+    ProfileError
+        The file cannot be read or is not such JSON (and nothing else is raised).
     """
     try:
         raw = Path(path).read_bytes()
@@ -118,8 +131,17 @@ STALE_AFTER = 600.0
 
 
 class WriteError(OSError):
-    """A file could not be written; ``strerror`` is the reason in words (``"No such folder: /x"``),
-    ``filename`` the path as given.  ``str()``: ``cannot write <path>: <reason>``."""
+    """A file could not be written: ``str()`` is ``cannot write <path>: <reason>``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file as the caller named it (``filename``).
+    reason : str
+        Why, in words (``"No such folder: /x"``): the error's ``strerror``.
+    errno : int or None
+        The operating system's error number, where there was one.
+    """
 
     def __init__(self, path: str | os.PathLike, reason: str, errno: int | None = None) -> None:
         super().__init__(errno, reason)
@@ -130,13 +152,37 @@ class WriteError(OSError):
 
 
 def is_temporary(name: str) -> bool:
-    """Whether the file name ``name`` is one of :func:`atomic_write`'s temporaries."""
+    """Whether a file name is one of :func:`atomic_write`'s temporaries.
+
+    Parameters
+    ----------
+    name : str
+        A file name without its folder.
+
+    Returns
+    -------
+    bool
+        ``True`` for ``.<name>.zwidth-<random>.tmp``.
+    """
     return bool(_TEMP_NAME.match(name))
 
 
 def sweep_temporaries(folder: str | os.PathLike, older_than: float = STALE_AFTER) -> list[Path]:
-    """Remove the temporaries of ours in ``folder`` last written more than ``older_than`` seconds
-    ago (saves killed before their rename); returns what was removed.  Never raises."""
+    """Remove the stale temporaries of :func:`atomic_write` in a folder (saves killed before their rename).
+
+    Parameters
+    ----------
+    folder : str or os.PathLike
+        The folder to sweep; a missing or unreadable folder is left alone.
+    older_than : float
+        Only temporaries last written more than this many seconds ago are removed (a younger one
+        may belong to a save still in progress).
+
+    Returns
+    -------
+    list of Path
+        The files removed.  Never raises.
+    """
     removed: list[Path] = []
     limit = time.time() - older_than
     try:
@@ -188,8 +234,20 @@ def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[str], ob
     an existing file is left untouched.  Each save first sweeps the folder's temporaries of ours
     older than :data:`STALE_AFTER` (left by saves that were killed).
 
-    Raises :class:`WriteError` (an ``OSError``) with the reason in words; an exception raised by
-    the callback that is not an ``OSError`` is passed on unchanged.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    data : bytes, str or callable
+        The content, or ``write(temp_path)`` that writes it.
+    encoding : str
+        The encoding of text ``data``.
+
+    Raises
+    ------
+    WriteError
+        The file cannot be written (an ``OSError``, with the reason in words); an exception of the
+        callback that is not an ``OSError`` is passed on unchanged.
     """
     target = _target_path(path)
     if target.is_dir():  # checked first: a folder is never replaced, and nothing is left behind
@@ -234,8 +292,21 @@ def atomic_write(path: str | os.PathLike, data: bytes | str | Callable[[str], ob
 
 
 def write_atomically(path: str | os.PathLike, text: str) -> None:
-    """Write ``text`` to ``path`` with :func:`atomic_write`; raises :class:`ProfileError` naming
-    ``path`` as given (with the :class:`WriteError` as its cause)."""
+    """Write text to a file with :func:`atomic_write`, failing as a profile error.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    text : str
+        Its new content (UTF-8).
+
+    Raises
+    ------
+    ProfileError
+        The file cannot be written: ``cannot save: <reason>``, naming ``path`` as given, with the
+        :class:`WriteError` as its cause.
+    """
     try:
         atomic_write(path, text)
     except WriteError as exc:
@@ -243,7 +314,13 @@ def write_atomically(path: str | os.PathLike, text: str) -> None:
 
 
 def bundled_profiles() -> dict[str, Path]:
-    """The preset profiles shipped in ``resources/profiles``: file stem -> path, sorted by name."""
+    """The preset profiles shipped in ``resources/profiles``.
+
+    Returns
+    -------
+    dict of str to Path
+        File stem -> path, sorted by name (empty when the folder is missing).
+    """
     try:
         folder = resource_path("profiles")
     except FileNotFoundError:
