@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import Any
 
 import hypothesis.strategies as st
+import pytest
 from hypothesis import HealthCheck, settings
 from hypothesis.stateful import RuleBasedStateMachine, invariant, rule, run_state_machine_as_test
 from PySide6.QtCore import QCoreApplication, QEvent, QSettings, QtMsgType, qInstallMessageHandler
@@ -342,6 +343,21 @@ def test_random_use_keeps_the_window_consistent(qapp, tmp_path):
     run_state_machine_as_test(machine, settings=settings(
         max_examples=4, stateful_step_count=50, derandomize=True, deadline=None, database=None,
         suppress_health_check=list(HealthCheck)))
+
+
+@pytest.mark.slow
+def test_ten_thousand_seeded_steps_keep_the_window_consistent(qapp):
+    """The long run (slow tier): the benchmark's 10^4 seeded random steps on this driver, every
+    invariant after every step (``make test`` runs the hypothesis machine's few hundred above)."""
+    import importlib.util
+
+    path = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_state_machine.py"
+    spec = importlib.util.spec_from_file_location("zwidth_bench_state_machine", path)
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    rows = bench.run(steps=bench.STEPS)
+    assert bench.STEPS == 10_000 and rows[0]["failures"] == 0, [r["name"] for r in rows[3:]]
+    assert sum(int(part.rsplit(" ", 1)[1]) for part in rows[2]["name"].split(": ", 1)[1].split(", ")) == 10_000
 
 
 def test_undo_history_is_bounded(qapp, tmp_path):
