@@ -1,17 +1,19 @@
-"""Command line: exit codes and error messages (the analysis summary itself is tested elsewhere)."""
+"""Command line: exit codes and error messages (the analysis summary itself is tested elsewhere).
+
+The commands run in this process (:func:`cli_runner.run_cli`); the two tests at the end of the
+first part start real processes, for what only a process shows (the entry points' exit codes,
+going headless without display variables)."""
 
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from analysis.study import display_kind
-from app.cli import format_table, main
+from app.cli import format_table
+from cli_runner import console_script, run_cli, run_process
 
 ROOT = Path(__file__).resolve().parents[1]
 HBFD = ROOT / "resources" / "profiles" / "hbfd.json"
@@ -28,27 +30,26 @@ def bad_profile(tmp_path) -> Path:
 
 @pytest.mark.parametrize("as_json", [False, True])
 def test_analyze_bad_profile_exits_1(capsys, bad_profile, as_json):
-    code = main(["analyze", str(bad_profile), *(["--json"] if as_json else [])])
-    out, err = capsys.readouterr()
-    assert code == 1
-    assert out == ""
+    r = run_cli(capsys, "analyze", bad_profile, *(["--json"] if as_json else []))
+    assert r.returncode == 1
+    assert r.stdout == ""
     assert (
-        err
+        r.stderr
         == f"zwidth: error: {bad_profile}: $.device.masses[1] (mass 2): expected a number > 0 and finite, "
         "within the physical range [1e-06, 1000] (kg), got -1.0\n"
     )
 
 
 def test_analyze_missing_file_exits_1(capsys, tmp_path):
-    assert main(["analyze", str(tmp_path / "nope.json")]) == 1
-    err = capsys.readouterr().err
-    assert err.startswith("zwidth: error: ") and "nope.json: cannot read the file" in err
+    r = run_cli(capsys, "analyze", tmp_path / "nope.json")
+    assert r.returncode == 1
+    assert r.stderr.startswith("zwidth: error: ") and "nope.json: cannot read the file" in r.stderr
 
 
 def test_open_bad_profile_exits_1_before_gui(capsys, bad_profile):
-    assert main([str(bad_profile)]) == 1
-    assert "$.device.masses[1]" in capsys.readouterr().err
-    assert main(["gui", str(bad_profile)]) == 1
+    r = run_cli(capsys, bad_profile)
+    assert r.returncode == 1 and "$.device.masses[1]" in r.stderr
+    assert run_cli(capsys, "gui", bad_profile).returncode == 1
 
 
 @pytest.mark.parametrize(
@@ -62,37 +63,36 @@ def test_open_bad_profile_exits_1_before_gui(capsys, bad_profile):
     ],
 )
 def test_usage_errors_exit_2(capsys, argv):
-    assert main(argv) == 2
-    err = capsys.readouterr().err
-    assert "usage: zwidth" in err and "error:" in err
+    r = run_cli(capsys, *argv)
+    assert r.returncode == 2
+    assert "usage: zwidth" in r.stderr and "error:" in r.stderr
 
 
 def test_help_exits_0(capsys):
-    assert main(["--help"]) == 0
-    assert "analyze" in capsys.readouterr().out
+    r = run_cli(capsys, "--help")
+    assert r.returncode == 0 and "analyze" in r.stdout
 
 
 def test_module_entry_point_exit_codes(bad_profile):
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    proc = subprocess.run(
-        [sys.executable, "-m", "app.cli", "analyze", str(bad_profile)],
-        cwd=ROOT,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    """A real process: ``python -m app.cli`` and the console script exit with main()'s code."""
+    proc = run_process("analyze", bad_profile, timeout=120)
     assert proc.returncode == 1
     assert proc.stderr.startswith("zwidth: error: ") and "Traceback" not in proc.stderr
-    proc = subprocess.run(
-        [sys.executable, "-m", "app.cli", "analyze"],
-        cwd=ROOT,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    script = console_script()
+    proc = run_process("analyze", timeout=120, script=script)  # the console script when installed
     assert proc.returncode == 2
+    assert proc.stderr.startswith("usage: zwidth") and "Traceback" not in proc.stderr
+
+
+def test_export_plot_headless_process(tmp_path):
+    """A real process with no display variables goes offscreen by itself, quietly."""
+    out = tmp_path / "p.png"
+    proc = run_process("export-plot", HBFD, "--plot", "bound", "-o", out, "--width", "640", display=False,
+                       timeout=180)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == "" and proc.stdout == ""
+    data = out.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and int.from_bytes(data[16:20], "big") == 640
 
 
 def test_format_table():
@@ -105,30 +105,20 @@ def test_format_table():
     ]
 
 
-# -- issue 6: every subcommand through the module entry point, JSON shapes, export-plot, report ------------
+# -- issue 6: every subcommand (in process), JSON shapes, export-plot, report -----------------------------
 
 EOM = ROOT / "resources" / "profiles" / "eom.json"
 RIGID = ROOT / "resources" / "profiles" / "rigid.json"
 
 
-def _run(*argv: str, timeout: float = 180) -> subprocess.CompletedProcess:
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    env.pop("QT_QPA_PLATFORM", None)  # the command must go headless by itself
-    env.pop("DISPLAY", None)
-    env.pop("WAYLAND_DISPLAY", None)
-    return subprocess.run([sys.executable, "-m", "app.cli", *argv], cwd=ROOT, env=env, capture_output=True,
-                          text=True, timeout=timeout)
-
-
 @pytest.mark.parametrize("sub", ["analyze", "design", "export-plot", "report", "bench", "gui"])
 def test_every_subcommand_has_help(capsys, sub):
-    assert main([sub, "--help"]) == 0
-    out = capsys.readouterr().out
-    assert out.startswith(f"usage: zwidth {sub}")
+    r = run_cli(capsys, sub, "--help")
+    assert r.returncode == 0 and r.stdout.startswith(f"usage: zwidth {sub}")
 
 
-def test_analyze_json_shape():
-    proc = _run("analyze", str(HBFD), "--json")
+def test_analyze_json_shape(capsys):
+    proc = run_cli(capsys, "analyze", str(HBFD), "--json")
     assert proc.returncode == 0, proc.stderr
     d = json.loads(proc.stdout)
     assert set(d) == {"summary_version", "profile", "impedance", "admittance"}
@@ -144,8 +134,8 @@ def test_analyze_json_shape():
 
 
 @pytest.mark.parametrize("display", ["impedance", "admittance"])
-def test_design_json_shape(display):
-    proc = _run("design", str(HBFD), "--display", display, "--json")
+def test_design_json_shape(capsys, display):
+    proc = run_cli(capsys, "design", str(HBFD), "--display", display, "--json")
     assert proc.returncode == 0, proc.stderr
     d = json.loads(proc.stdout)
     assert d["display"] == display and d["summary_version"] == 1
@@ -157,22 +147,23 @@ def test_design_json_shape(display):
         assert set(d["chart"]) == {"mc", "low", "high"}
 
 
-def test_design_text_and_bad_display():
-    assert _run("design", str(RIGID)).returncode == 0
-    assert _run("design", str(RIGID), "--display", "nonsense").returncode == 2
+def test_design_text_and_bad_display(capsys):
+    r = run_cli(capsys, "design", RIGID)
+    assert r.returncode == 0 and "b_c" in r.stdout
+    assert run_cli(capsys, "design", RIGID, "--display", "nonsense").returncode == 2
 
 
 @pytest.mark.parametrize("plot,ext", [("bound", "png"), ("range", "svg"), ("chart", "csv"), ("map", "svg"),
                                       ("transparency", "csv"), ("reserve", "csv")])
-def test_export_plot(tmp_path, plot, ext):
+def test_export_plot(capfd, tmp_path, plot, ext):
     profile = EOM if plot == "transparency" else HBFD
     out = tmp_path / f"p.{ext}"
     args = ["export-plot", str(profile), "--plot", plot, "-o", str(out)]
     if ext == "png":
         args += ["--width", "640"]
-    proc = _run(*args)
+    proc = run_cli(capfd, *args)
     assert proc.returncode == 0, proc.stderr
-    assert proc.stderr == ""
+    assert proc.stderr == "" and proc.stdout == ""
     data = out.read_bytes()
     if ext == "png":
         assert data[:8] == b"\x89PNG\r\n\x1a\n"
@@ -183,22 +174,22 @@ def test_export_plot(tmp_path, plot, ext):
         assert data.splitlines()[0].count(b",") >= 1
 
 
-def test_export_plot_errors(tmp_path, bad_profile):
+def test_export_plot_errors(capsys, tmp_path, bad_profile):
     out = tmp_path / "x.png"
-    proc = _run("export-plot", str(bad_profile), "--plot", "bound", "-o", str(out))
+    proc = run_cli(capsys, "export-plot", str(bad_profile), "--plot", "bound", "-o", str(out))
     assert proc.returncode == 1 and "$.device.masses[1]" in proc.stderr and "Traceback" not in proc.stderr
-    proc = _run("export-plot", str(RIGID), "--plot", "map", "-o", str(out))
+    proc = run_cli(capsys, "export-plot", str(RIGID), "--plot", "map", "-o", str(out))
     assert proc.returncode == 1 and "$.simulation" in proc.stderr and str(RIGID) in proc.stderr
-    assert _run("export-plot", str(HBFD), "--plot", "bound", "-o", str(tmp_path / "x.gif")).returncode == 2
-    assert _run("export-plot", str(HBFD), "--plot", "nope", "-o", str(out)).returncode == 2
-    assert _run("export-plot", str(HBFD), "-o", str(out)).returncode == 2
+    assert run_cli(capsys, "export-plot", HBFD, "--plot", "bound", "-o", tmp_path / "x.gif").returncode == 2
+    assert run_cli(capsys, "export-plot", HBFD, "--plot", "nope", "-o", out).returncode == 2
+    assert run_cli(capsys, "export-plot", HBFD, "-o", out).returncode == 2
     assert not out.exists()
 
 
 @pytest.mark.parametrize("ext", ["pdf", "html"])
-def test_report_command(tmp_path, ext):
+def test_report_command(capfd, tmp_path, ext):
     out = tmp_path / f"report.{ext}"
-    proc = _run("report", str(RIGID), "-o", str(out), "--page-size", "letter")
+    proc = run_cli(capfd, "report", str(RIGID), "-o", str(out), "--page-size", "letter")
     assert proc.returncode == 0, proc.stderr
     assert proc.stderr == ""
     head = out.read_bytes()[:16]
@@ -206,13 +197,13 @@ def test_report_command(tmp_path, ext):
 
 
 @pytest.mark.parametrize("case", ["bad_value", "not_json", "missing"])
-def test_report_bad_profile_clean_error(tmp_path, bad_profile, case):
+def test_report_bad_profile_clean_error(capsys, tmp_path, bad_profile, case):
     path = {"bad_value": bad_profile, "missing": tmp_path / "nope.json"}.get(case)
     if case == "not_json":
         path = tmp_path / "broken.json"
         path.write_text("{ not json")
     out = tmp_path / "r.pdf"
-    proc = _run("report", str(path), "-o", str(out))
+    proc = run_cli(capsys, "report", str(path), "-o", str(out))
     assert proc.returncode == 1
     assert proc.stderr.startswith("zwidth: error: ") and str(path) in proc.stderr
     assert "Traceback" not in proc.stderr and not out.exists()
@@ -220,11 +211,13 @@ def test_report_bad_profile_clean_error(tmp_path, bad_profile, case):
         assert "$.device.masses[1]" in proc.stderr
 
 
-def test_report_usage_errors(tmp_path):
-    assert _run("report", str(HBFD), "-o", str(tmp_path / "r.docx")).returncode == 2
-    assert _run("report", str(HBFD)).returncode == 2
-    assert _run("report", str(HBFD), "-o", str(tmp_path / "r.pdf"), "--page-size", "a3").returncode == 2
+def test_report_usage_errors(capsys, tmp_path):
+    assert run_cli(capsys, "report", HBFD, "-o", tmp_path / "r.docx").returncode == 2
+    assert run_cli(capsys, "report", HBFD).returncode == 2
+    assert run_cli(capsys, "report", HBFD, "-o", tmp_path / "r.pdf", "--page-size", "a3").returncode == 2
+    assert not (tmp_path / "r.pdf").exists()
 
 
-def test_bench_quick_usage():
-    assert _run("bench", "--bogus").returncode == 2
+def test_bench_quick_usage(capsys):
+    r = run_cli(capsys, "bench", "--bogus")
+    assert r.returncode == 2 and "usage: zwidth" in r.stderr

@@ -9,9 +9,6 @@ from __future__ import annotations
 
 import csv
 import io
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -19,19 +16,17 @@ import pytest
 
 from analysis.profiles.io import load_profile
 from analysis.study import display_kind
+from cli_runner import Capture, run_cli
 
 ROOT = Path(__file__).resolve().parents[1]
 PROFILES = ROOT / "resources" / "profiles"
 
 
-def export_csv(tmp_path: Path, profile: Path, plot: str) -> tuple[list[str], list[str], list[list[str]]]:
-    """Run the command headless; (note lines, header, rows)."""
+def export_csv(capture: Capture, tmp_path: Path, profile: Path, plot: str
+               ) -> tuple[list[str], list[str], list[list[str]]]:
+    """Run ``zwidth export-plot`` (in process); (note lines, header, rows)."""
     out = tmp_path / f"{plot}.csv"
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    for var in ("QT_QPA_PLATFORM", "DISPLAY", "WAYLAND_DISPLAY"):
-        env.pop(var, None)
-    proc = subprocess.run([sys.executable, "-m", "app.cli", "export-plot", str(profile), "--plot", plot,
-                           "-o", str(out)], cwd=ROOT, env=env, capture_output=True, text=True, timeout=240)
+    proc = run_cli(capture, "export-plot", profile, "--plot", plot, "-o", out)
     assert proc.returncode == 0, proc.stderr
     lines = out.read_text(encoding="utf-8").splitlines()
     notes = [line for line in lines if line.startswith("#")]
@@ -45,9 +40,9 @@ def column(header: list[str], rows: list[list[str]], name: str) -> np.ndarray:
 
 
 @pytest.mark.parametrize("preset", ["hbfd", "rigid"])
-def test_design_chart_current_gains_are_the_profiles_gains(tmp_path, preset):
+def test_design_chart_current_gains_are_the_profiles_gains(capfd, tmp_path, preset):
     path = PROFILES / f"{preset}.json"
-    notes, header, rows = export_csv(tmp_path, path, "chart")
+    notes, header, rows = export_csv(capfd, tmp_path, path, "chart")
     p = load_profile(path)
     x, y = display_kind(p).chart_point(p)
     bc = column(header, rows, "current gains: b_c (N s/m)")
@@ -58,8 +53,8 @@ def test_design_chart_current_gains_are_the_profiles_gains(tmp_path, preset):
         assert not notes
 
 
-def test_range_csv_keeps_the_off_scale_points(tmp_path):
-    notes, header, rows = export_csv(tmp_path, PROFILES / "hbfd.json", "range")
+def test_range_csv_keeps_the_off_scale_points(capfd, tmp_path):
+    notes, header, rows = export_csv(capfd, tmp_path, PROFILES / "hbfd.json", "range")
     p = load_profile(PROFILES / "hbfd.json")
     res = display_kind(p).evaluate(p)
     zmin = column(header, rows, "|Z_min|: |Z_min| (N s/m)")
@@ -69,8 +64,8 @@ def test_range_csv_keeps_the_off_scale_points(tmp_path):
     assert zmin.max() > 1e11  # the rise just below Nyquist that the default view leaves off-scale
 
 
-def test_empty_design_chart_export_carries_a_note(tmp_path):
-    notes, header, rows = export_csv(tmp_path, PROFILES / "eom.json", "chart")
+def test_empty_design_chart_export_carries_a_note(capfd, tmp_path):
+    notes, header, rows = export_csv(capfd, tmp_path, PROFILES / "eom.json", "chart")
     assert len(notes) == 1 and notes[0].startswith("# note: Nothing is feasible")
     assert "eq. 9" in notes[0] and "b_c from 1 to" in notes[0]
     assert column(header, rows, "largest k_c: k_c max (N/m)").size == 0

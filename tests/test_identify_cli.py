@@ -12,7 +12,7 @@ import pytest
 from analysis.identify import device_response
 from analysis.profiles import load_profile
 from analysis.resources import resource_path
-from app.cli import main
+from cli_runner import run_cli
 
 HBFD = resource_path("profiles", "hbfd.json")
 
@@ -34,8 +34,7 @@ def frf(tmp_path_factory) -> Path:
 
 def test_identify_recovers_the_hbfd_and_writes_a_profile(frf, tmp_path, capsys):
     out = tmp_path / "mine.json"
-    code = main(["identify", str(frf), "--masses", "4", "--sample-time", "0.001", "-o", str(out)])
-    text, err = capsys.readouterr()
+    code, text, err = run_cli(capsys, "identify", frf, "--masses", "4", "--sample-time", "0.001", "-o", out)
     assert code == 0, err
     truth = load_profile(HBFD).device
     p = load_profile(out)
@@ -55,10 +54,10 @@ def test_identify_recovers_the_hbfd_and_writes_a_profile(frf, tmp_path, capsys):
 
 def test_identify_json_with_fixed_mass_and_orders(frf, tmp_path, capsys):
     out = tmp_path / "fixed.json"
-    code = main(["identify", str(frf), "--masses", "4", "--sample-time", "0.001", "--fix", "ground_dampings[3]=5",
-                 "--orders", "--json", "-o", str(out)])
-    data = json.loads(capsys.readouterr().out)
-    assert code == 0
+    r = run_cli(capsys, "identify", frf, "--masses", "4", "--sample-time", "0.001", "--fix", "ground_dampings[3]=5",
+                "--orders", "--json", "-o", out)
+    assert r.returncode == 0, r.stderr
+    data = json.loads(r.stdout)
     rows = {r["key"]: r for r in data["parameters"]}
     assert rows["ground_dampings[3]"]["fixed"] is True and rows["ground_dampings[3]"]["value"] == 5.0
     assert rows["stiffnesses[0]"]["value"] == pytest.approx(130000.0, rel=1e-6)
@@ -75,8 +74,7 @@ def test_bad_csv_names_file_row_and_column(tmp_path, capsys):
     lines[5] = lines[5].split(",")[0] + ",nan," + lines[5].split(",")[2]
     bad.write_text("\n".join(lines) + "\n")
     out = tmp_path / "never.json"
-    code = main(["identify", str(bad), "--masses", "2", "-o", str(out)])
-    err = capsys.readouterr().err
+    code, _, err = run_cli(capsys, "identify", bad, "--masses", "2", "-o", out)
     assert code == 1 and not out.exists()
     assert str(bad) in err and "line 6" in err and "'real'" in err
 
@@ -88,11 +86,10 @@ def test_bad_csv_names_file_row_and_column(tmp_path, capsys):
 ])
 def test_usage_errors_exit_2(frf, tmp_path, capsys, args, text):
     argv = ["identify", str(frf), "--masses", "4", *args, "-o", str(tmp_path / "x.json")]
-    assert main(argv) == 2
-    assert text in capsys.readouterr().err
+    r = run_cli(capsys, *argv)
+    assert r.returncode == 2 and text in r.stderr
 
 
 def test_unknown_fixed_key_exits_1(frf, tmp_path, capsys):
-    code = main(["identify", str(frf), "--masses", "2", "--fix", "masses[7]=1", "-o", str(tmp_path / "x.json")])
-    assert code == 1
-    assert "masses[7]" in capsys.readouterr().err
+    r = run_cli(capsys, "identify", frf, "--masses", "2", "--fix", "masses[7]=1", "-o", tmp_path / "x.json")
+    assert r.returncode == 1 and "masses[7]" in r.stderr

@@ -1,54 +1,71 @@
 """Starting the GUI without a display: exit 1 with a message, never Qt's abort (exit 134).
 
-The subprocess test runs ``python -m app.cli PROFILE`` with DISPLAY, WAYLAND_DISPLAY and
-QT_QPA_PLATFORM removed; the others check :func:`app.display_check.gui_problem` on given
-environments (the library loader replaced by a list of what is installed).
+One real process (:func:`cli_runner.run_process`) with DISPLAY, WAYLAND_DISPLAY and QT_QPA_PLATFORM
+removed runs ``zwidth PROFILE``, ``zwidth gui PROFILE`` and ``zwidth`` in turn (Qt's abort would end
+that process); the others check :func:`app.display_check.gui_problem` on given environments (the
+library loader replaced by a list of what is installed), and a bad profile in process.
 """
 
 from __future__ import annotations
 
-import os
+import json
 import subprocess
 import sys
+import textwrap
 from pathlib import Path
 
 import pytest
 
 from app.display_check import XCB_LIBRARIES, gui_problem, missing_libraries
+from cli_runner import DISPLAY_VARIABLES, environment, run_cli
 
 ROOT = Path(__file__).resolve().parents[1]
 HBFD = ROOT / "resources" / "profiles" / "hbfd.json"
 HEADLESS = ("zwidth analyze", "zwidth report", "zwidth export-plot")
+#: the launches checked in the no-display process: with a profile, spelt out, and with no argument
+LAUNCHES = ([str(HBFD)], ["gui", str(HBFD)], [])
 
-
-def _without_display() -> dict[str, str]:
-    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY", "QT_QPA_PLATFORM")}
-    env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
-    return env
+#: run each launch with its own captured output; print (exit code, stdout, stderr) of each as JSON
+_SCRIPT = textwrap.dedent("""
+    import contextlib, io, json, sys
+    from app.cli import main
+    results = []
+    for argv in json.loads(sys.argv[1]):
+        out, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main(argv)
+        results.append((code, out.getvalue(), err.getvalue()))
+    print(json.dumps(results))
+""")
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the display variables are Linux's")
-@pytest.mark.parametrize("argv", [[str(HBFD)], ["gui", str(HBFD)], []])
-def test_no_display_exits_1_with_a_message(argv):
-    proc = subprocess.run([sys.executable, "-m", "app.cli", *argv], env=_without_display(), cwd=ROOT,
-                          capture_output=True, text=True, timeout=120)
-    assert proc.returncode == 1, (proc.returncode, proc.stderr)
-    assert proc.stdout == ""
-    assert proc.stderr.startswith("zwidth: error: cannot start the GUI: there is no display "
-                                  "(neither DISPLAY nor WAYLAND_DISPLAY is set).")
-    for command in HEADLESS:
-        assert command in proc.stderr
+def test_no_display_exits_1_with_a_message():
+    proc = subprocess.run([sys.executable, "-c", _SCRIPT, json.dumps(LAUNCHES)], env=environment(display=False),
+                          cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, (proc.returncode, proc.stderr)  # 134: Qt aborted the process
     assert "xcb" not in proc.stderr  # not Qt's misleading plugin message
+    results = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert len(results) == len(LAUNCHES)
+    for argv, (code, out, err) in zip(LAUNCHES, results):
+        assert code == 1, (argv, err)
+        assert out == ""
+        assert err.startswith("zwidth: error: cannot start the GUI: there is no display "
+                              "(neither DISPLAY nor WAYLAND_DISPLAY is set)."), (argv, err)
+        for command in HEADLESS:
+            assert command in err
+        assert "xcb" not in err
 
 
-def test_bad_profile_is_reported_before_the_display(tmp_path):
+def test_bad_profile_is_reported_before_the_display(capsys, monkeypatch, tmp_path):
     bad = tmp_path / "bad.json"
     bad.write_text("{")
-    proc = subprocess.run([sys.executable, "-m", "app.cli", str(bad)], env=_without_display(), cwd=ROOT,
-                          capture_output=True, text=True, timeout=120)
-    assert proc.returncode == 1
-    assert "no display" not in proc.stderr
-    assert str(bad) in proc.stderr
+    for var in DISPLAY_VARIABLES:  # the display check would fail here: the profile must be read first
+        monkeypatch.delenv(var, raising=False)
+    r = run_cli(capsys, bad)
+    assert r.returncode == 1
+    assert "no display" not in r.stderr
+    assert str(bad) in r.stderr
 
 
 def _installed(*missing: str):

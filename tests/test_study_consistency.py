@@ -9,9 +9,6 @@ import json
 import math
 import os
 import re
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -20,8 +17,8 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 from analysis.profiles.io import bundled_profiles, load_profile  # noqa: E402
 from analysis.study import HEADLINE_KEYS, Headline, display_kind, headline  # noqa: E402
+from cli_runner import run_cli  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[1]
 PROFILES = sorted(bundled_profiles().items())
 IDS = [name for name, _ in PROFILES]
 #: the verdict numbers compared everywhere (``stable`` is compared as a yes/no)
@@ -64,11 +61,6 @@ def _json_number(x: object) -> float | None:
 
 # -- the CLI ---------------------------------------------------------------------------------------
 
-def _cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "app.cli", *args], capture_output=True, text=True, cwd=ROOT,
-                          timeout=300)
-
-
 def _json_designs(kind_name: str, section: dict) -> dict[str, float | None]:
     d = section["design"]
     if display_kind(kind_name).is_impedance:
@@ -80,8 +72,8 @@ def _json_designs(kind_name: str, section: dict) -> dict[str, float | None]:
 
 
 @pytest.mark.parametrize("name,path", PROFILES, ids=IDS)
-def test_cli_json_equals_study(reference, name, path):
-    proc = _cli("analyze", str(path), "--json")
+def test_cli_json_equals_study(capsys, reference, name, path):
+    proc = run_cli(capsys, "analyze", path, "--json")
     assert proc.returncode == 0, proc.stderr
     h = reference[name]
     section = json.loads(proc.stdout)[h.kind.name]
@@ -95,9 +87,9 @@ def test_cli_json_equals_study(reference, name, path):
 
 
 @pytest.mark.parametrize("name,path", PROFILES, ids=IDS)
-def test_cli_text_headline(reference, name, path):
+def test_cli_text_headline(capsys, reference, name, path):
     """The text output leads with the reserve and the binding frequency, printed as everywhere."""
-    proc = _cli("analyze", str(path))
+    proc = run_cli(capsys, "analyze", path)
     assert proc.returncode == 0, proc.stderr
     h = reference[name]
     block = proc.stdout.split(f"{h.kind.title}, coupling")[1]
@@ -207,7 +199,7 @@ def test_quantity_formatting_rule():
     assert quantity("k_max").format(1.5e7, rich=True) == "1.5×10<sup>7</sup> N/m"
     assert quantity("worst_margin", "m/(N·s)").format(-2.5e-6) == "-2.5e-06 m/(N·s)"
     assert quantity("kc_max").format(None) == "infeasible"
-    assert quantity("kc_max").format(math.inf) == "unbounded"
+    assert quantity("kc_max").format(math.inf) == "∞"
     assert quantity("min_eta").format(math.nan) == "n/a"
 
 

@@ -20,7 +20,7 @@ from analysis.study import (
     simulation,
     simulation_section,
 )
-from app.cli import main
+from cli_runner import run_cli
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -73,15 +73,15 @@ def test_cannot_write_says_why(tmp_path, capsys):
     assert unwritable_reason(tmp_path / "file" / "r.pdf") == f"Not a folder: {tmp_path / 'file'}"
     assert unwritable_reason(tmp_path) == f"Is a folder: {tmp_path}"
     rigid = bundled_profiles()["rigid"]
-    assert main(["report", str(rigid), "-o", str(missing), "--no-sampled"]) == 1
-    err = capsys.readouterr().err
-    assert err == f"zwidth: error: cannot write {missing}: No such folder: {tmp_path / 'no'}\n"
+    r = run_cli(capsys, "report", rigid, "-o", missing, "--no-sampled")
+    assert r.returncode == 1
+    assert r.stderr == f"zwidth: error: cannot write {missing}: No such folder: {tmp_path / 'no'}\n"
 
 
 def test_reserve_is_printed_by_the_one_rule():
     assert format_number(-452.0, 4, scale=100.0, rich=True) == "−4.52×10<sup>4</sup>"
     assert format_number(1.62e-9, 4, scale=100.0, rich=True) == "1.62×10<sup>−7</sup>"
-    assert format_number(math.inf) == "unbounded"
+    assert format_number(math.inf) == "∞"
 
 
 def test_one_year_for_the_adams_paper():

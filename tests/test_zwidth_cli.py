@@ -4,9 +4,6 @@ from __future__ import annotations
 
 import csv
 import math
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -15,18 +12,9 @@ import pytest
 from analysis.profiles import ControllerSection, bundled_profiles, load_profile, save_profile
 from analysis.sampled import VelocityFilter, load_trials, score_trials
 from analysis import study
+from cli_runner import run_cli
 
-ROOT = Path(__file__).resolve().parents[1]
 F = VelocityFilter("lowpass1", 2 * math.pi * 60)
-
-
-def _run(*argv: str, timeout: float = 300) -> subprocess.CompletedProcess:
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    env.pop("QT_QPA_PLATFORM", None)  # the command goes headless by itself
-    env.pop("DISPLAY", None)
-    env.pop("WAYLAND_DISPLAY", None)
-    return subprocess.run([sys.executable, "-m", "app.cli", *argv], cwd=ROOT, env=env, capture_output=True,
-                          text=True, timeout=timeout)
 
 
 @pytest.fixture(scope="module")
@@ -45,9 +33,9 @@ def _csv(path: Path) -> tuple[list[str], list[list[float]]]:
     return rows[0], [[float(x) if x else math.nan for x in r] for r in rows[1:]]
 
 
-def test_export_region_csv_has_the_region_in_the_header_units(profile_file, tmp_path):
+def test_export_region_csv_has_the_region_in_the_header_units(capfd, profile_file, tmp_path):
     out = tmp_path / "region.csv"
-    proc = _run("export-plot", str(profile_file), "--plot", "zwidth-region", "-o", str(out))
+    proc = run_cli(capfd, "export-plot", str(profile_file), "--plot", "zwidth-region", "-o", str(out))
     assert proc.returncode == 0, proc.stderr
     header, rows = _csv(out)
     assert header[0].endswith(": B (N s/m)") and header[1].endswith(": K (N/m)")
@@ -63,9 +51,9 @@ def test_export_region_csv_has_the_region_in_the_header_units(profile_file, tmp_
     assert f"{wrong} of 4 predicted wrong" in text
 
 
-def test_export_filter_optimum_csv(profile_file, tmp_path):
+def test_export_filter_optimum_csv(capfd, profile_file, tmp_path):
     out = tmp_path / "opt.csv"
-    proc = _run("export-plot", str(profile_file), "--plot", "filter-optimum", "-o", str(out))
+    proc = run_cli(capfd, "export-plot", str(profile_file), "--plot", "filter-optimum", "-o", str(out))
     assert proc.returncode == 0, proc.stderr
     header, rows = _csv(out)
     assert header[0].endswith(": cut-off (Hz)") and header[1].endswith(": area (N^2 s/m^2)")
