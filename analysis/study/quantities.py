@@ -50,8 +50,12 @@ def superscript_numbers(text: str) -> str:
 
 
 def format_number(value: Any, digits: int = DIGITS, *, scale: float = 1.0, rich: bool = False) -> str:
-    """A number as zwidth prints it: ``None`` -> "infeasible", NaN -> "n/a",
-    +-inf -> "unbounded"/"-unbounded", booleans -> "yes"/"no", else ``digits`` significant digits."""
+    """A number as zwidth prints it: ``None`` -> "infeasible", NaN -> "n/a", +-inf -> "∞"/"-∞",
+    booleans -> "yes"/"no", else ``digits`` significant digits.  ``rich`` (Qt rich text / HTML)
+    typesets the exponent (``1.2×10<sup>5</sup>``) and the minus sign (``−``).
+
+    The one rule: the GUI's views, the verdict, ``zwidth analyze`` and the report all print
+    numbers through it."""
     if value is None:
         return "infeasible"
     if isinstance(value, bool) or type(value).__name__ == "bool_":
@@ -60,7 +64,7 @@ def format_number(value: Any, digits: int = DIGITS, *, scale: float = 1.0, rich:
     if math.isnan(x):
         return "n/a"
     if math.isinf(x):
-        return "unbounded" if x > 0 else ("−unbounded" if rich else "-unbounded")
+        return "∞" if x > 0 else ("−∞" if rich else "-∞")
     text = f"{x * scale:.{digits}g}"
     return _rich(text) if rich else text
 
@@ -81,7 +85,7 @@ class Quantity:
         return format_number(value, self.digits, scale=self.scale, rich=rich)
 
     def format(self, value: Any, *, unit: bool = True, rich: bool = False) -> str:
-        """The printed number with its unit (no unit after a word such as "unbounded")."""
+        """The printed number with its unit (none after "∞" or a word such as "infeasible")."""
         text = self.number(value, rich=rich)
         finite = value is not None and not isinstance(value, bool) and math.isfinite(float(value))
         return f"{text} {self.unit}" if unit and self.unit and finite else text
@@ -89,7 +93,8 @@ class Quantity:
     def parse(self, text: str) -> float:
         """The value back from :meth:`format`'s plain text (tests compare printed outputs)."""
         word = text.split()[0] if text.split() else text
-        special = {"unbounded": math.inf, "-unbounded": -math.inf, "n/a": math.nan}
+        special = {"∞": math.inf, "-∞": -math.inf, "−∞": -math.inf, "n/a": math.nan,
+                   "unbounded": math.inf, "-unbounded": -math.inf}  # the spelling before the one "∞"
         if word in special:
             return special[word]
         return float(word.replace("−", "-")) / self.scale

@@ -44,21 +44,15 @@ def rich_label(text: str) -> str:
     return re.sub(r"_(\w+)", r"<sub>\1</sub>", text)
 
 
-def fmt(x: float, digits: int = 4) -> str:
-    """A number for labels: ``1.171e+05`` -> ``1.171e5``; inf and NaN spelt out."""
-    if x is None or (isinstance(x, float) and math.isnan(x)):
-        return "–"
-    if math.isinf(x):
-        return "∞" if x > 0 else "−∞"
-    return format_number(x, digits, rich=True)  # the one rule: 1.171×10<sup>5</sup>, a true minus
+def fmt(x: float | None, digits: int = 4) -> str:
+    """A number for rich-text labels: :func:`analysis.study.format_number` with ``rich=True``
+    (``1.171×10<sup>5</sup>``, a true minus, "∞")."""
+    return format_number(x, digits, rich=True)
 
 
-def plain(x: float, digits: int = 4) -> str:
-    if x is None or math.isnan(x):
-        return "–"
-    if math.isinf(x):
-        return "inf" if x > 0 else "-inf"
-    return f"{x:.{digits}g}"
+def plain(x: float | None, digits: int = 4) -> str:
+    """A number for plain-text labels: :func:`analysis.study.format_number` (``1.171e+05``, "∞")."""
+    return format_number(x, digits)
 
 
 #: The largest magnitude a plot draws (far beyond any physical value of the app; spans stay finite).
