@@ -6,6 +6,11 @@ Each row has a ``name`` and timing columns (``median_ms``, ``p95_ms``), and may 
 command prints the table and fails on nothing but a crash.  The full run (without
 ``--quick``) also writes the table into ``BENCHMARKS.md`` between markers, with the date
 and the machine.
+
+``--quick`` (run by ``make test``, about 30 s) is a crash check of every benchmark: each timed
+call once without warm-up (``tests.benchmarks.common.timed``), the smallest sizes, a few steps of
+the GUI state machine and one identification replicate; the long runs belong to the full run.
+Its times are those of single cold calls, not comparable with the full run's.
 """
 
 from __future__ import annotations
@@ -63,17 +68,18 @@ def run_bench(quick: bool = False, only: str | None = None, write: bool | None =
     if only:
         names = [n for n in names if only in n]
     sections = []
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     for name in names:
         mod = importlib.import_module(f"tests.benchmarks.{name}")
-        start = time.perf_counter()
+        start, cpu = time.perf_counter(), time.process_time()
         rows = mod.run(quick=quick)
         table = format_rows(name, rows)
         print(table)
-        print(f"({name}: {time.perf_counter() - start:.1f} s)\n", flush=True)
+        print(f"({name}: {time.perf_counter() - start:.1f} s, CPU {time.process_time() - cpu:.1f} s)\n", flush=True)
         sections.append(table)
     total = time.perf_counter() - t0
-    print(f"all benchmarks: {total:.1f} s ({'quick' if quick else 'full'})")
+    # the CPU time (this process's threads, not its children) says what the run cost on a shared machine
+    print(f"all benchmarks: {total:.1f} s, CPU {time.process_time() - c0:.1f} s ({'quick' if quick else 'full'})")
     if write if write is not None else not quick:
         from tests.benchmarks.common import machine
 

@@ -1,4 +1,5 @@
-"""`zwidth bench --only X --write` merges its tables into BENCHMARKS.md and keeps the others."""
+"""`zwidth bench --only X --write` merges its tables into BENCHMARKS.md and keeps the others; the
+quick run times each benchmark once."""
 
 from __future__ import annotations
 
@@ -41,3 +42,24 @@ def test_full_run_replaces_the_block():
     out = merge_tables(DOC, ["### bench_c\n\n| c |"], "day 2")
     assert "bench_a" not in out and "bench_b" not in out and "### bench_c" in out
     assert "Run on day 2." in out and out.rstrip().endswith("after")
+
+
+def test_quick_timing_is_one_call_and_the_full_one_repeats():
+    """`zwidth bench --quick` calls each timed function once (no warm-up); the full run warms up,
+    then times ``repeat`` calls; both return the last call's value."""
+    from tests.benchmarks.common import timed, timeit
+
+    calls: list[int] = []
+
+    def fn() -> int:
+        calls.append(len(calls))
+        return len(calls)
+
+    stats, value = timed(fn, repeat=7, quick=True)
+    assert calls == [0] and value == 1 and stats["runs"] == 1 and stats["median_ms"] >= 0.0
+    calls.clear()
+    stats, value = timed(fn, repeat=7)
+    assert len(calls) == 8 and value == 8 and stats["runs"] == 7
+    assert stats["p95_ms"] >= stats["median_ms"] >= 0.0
+    calls.clear()
+    assert timeit(fn, repeat=3, quick=True)["runs"] == 1 and len(calls) == 1

@@ -26,11 +26,14 @@ from analysis import AdmittanceDisplay, ImpedanceDisplay
 from analysis.chain import grids
 from analysis.twoport.impedance import kc_upper
 
-from tests.benchmarks.common import hbfd, timeit
+from tests.benchmarks.common import hbfd, timed
 
 RATIOS = (0.1, 1e-2, 1e-3, 1e-4)
 GRIDS = (100, 300, 1000, 3000, 10000)
 BC = 50.0  # N s/m: with 100, no k_c is feasible for damping ratios <= 1e-3 (B b_c > 1 at the peaks)
+#: ``zwidth bench --quick``: the lightest and the least damped device, a 20 000-point reference
+QUICK_RATIOS = (0.1, 1e-4)
+QUICK_DENSE = 20_000
 
 
 def _dense_min(f, lo, hi, points):
@@ -48,8 +51,8 @@ def _dense_min(f, lo, hi, points):
 
 def _kc_rows(quick: bool) -> tuple[list[dict], dict]:
     rows, series = [], {}
-    dense_points = 60_000 if quick else 300_000
-    for z in RATIOS:
+    dense_points = QUICK_DENSE if quick else 300_000
+    for z in QUICK_RATIOS if quick else RATIOS:
         dev = hbfd(ratio=z)
         imp = ImpedanceDisplay(dev)
         T = dev.sample_time
@@ -60,17 +63,15 @@ def _kc_rows(quick: bool) -> tuple[list[dict], dict]:
 
         ref = _dense_min(f, lo, hi, dense_points)
         pts = []
-        for n in GRIDS[:3] if quick else GRIDS:
+        for n in GRIDS[:2] if quick else GRIDS:
             w = np.geomspace(lo, hi, n)
-            t = timeit(lambda w=w: float(np.min(f(w))), repeat=3 if quick else 10)
-            val = float(np.min(f(w)))
+            t, val = timed(lambda w=w: float(np.min(f(w))), repeat=10, quick=quick)
             pts.append(("log grid", n, t["median_ms"], (val - ref) / ref))
-            t2 = timeit(lambda w=w: grids.refine_minima(f, w, f(w), lo, hi, candidates=8), repeat=3 if quick else 10)
-            rw, rv = grids.refine_minima(f, w, f(w), lo, hi, candidates=8)
-            val2 = min(float(np.min(f(w))), float(rv[0]) if rv.size else np.inf)
+            t2, (rw, rv) = timed(lambda w=w: grids.refine_minima(f, w, f(w), lo, hi, candidates=8), repeat=10,
+                                 quick=quick)
+            val2 = min(val, float(rv[0]) if rv.size else np.inf)
             pts.append(("log grid + refinement", n, t2["median_ms"], (val2 - ref) / ref))
-        t3 = timeit(lambda dev=dev: ImpedanceDisplay(dev).max_stiffness(BC), repeat=3 if quick else 20)
-        d = ImpedanceDisplay(dev).max_stiffness(BC)
+        t3, d = timed(lambda dev=dev: ImpedanceDisplay(dev).max_stiffness(BC), repeat=20, quick=quick)
         pts.append(("zwidth resonance grid", d.evaluations, t3["median_ms"], (d.kc - ref) / ref))
         # signed error: k_c above the dense reference is on the unsafe side
         series[z] = [(name, n, ms, abs(e), e > 1e-12) for name, n, ms, e in pts]
@@ -84,9 +85,9 @@ def _kc_rows(quick: bool) -> tuple[list[dict], dict]:
 
 def _bc_rows(quick: bool) -> tuple[list[dict], dict]:
     rows, series = [], {}
-    dense_points = 60_000 if quick else 300_000
+    dense_points = QUICK_DENSE if quick else 300_000
     mc = 31.0
-    for z in RATIOS:
+    for z in QUICK_RATIOS if quick else RATIOS:
         dev = hbfd(ratio=z)
         adm = AdmittanceDisplay(dev, 50e3, 100.0)
         lo, hi = grids.band_edges(dev)
@@ -97,13 +98,13 @@ def _bc_rows(quick: bool) -> tuple[list[dict], dict]:
         ref_u = _dense_min(upper, lo, hi, dense_points)
         ref = 1.0 / ref_u
         pts = []
-        for n in GRIDS[:3] if quick else GRIDS:
+        for n in GRIDS[:2] if quick else GRIDS:
             w = np.geomspace(lo, hi, n)
-            t = timeit(lambda w=w: float(np.min(upper(w))), repeat=3 if quick else 10)
-            val = 1.0 / float(np.min(upper(w)))
+            t, low = timed(lambda w=w: float(np.min(upper(w))), repeat=10, quick=quick)
+            val = 1.0 / low
             pts.append(("log grid", n, t["median_ms"], (val - ref) / ref))
-        t3 = timeit(lambda dev=dev: AdmittanceDisplay(dev, 50e3, 100.0).feasible_damping(mc), repeat=3 if quick else 10)
-        d = AdmittanceDisplay(dev, 50e3, 100.0).feasible_damping(mc)
+        t3, d = timed(lambda dev=dev: AdmittanceDisplay(dev, 50e3, 100.0).feasible_damping(mc), repeat=10,
+                      quick=quick)
         err = (d.low - ref) / ref if d.low is not None else float("nan")
         pts.append(("zwidth resonance grid", len(adm.frequencies()), t3["median_ms"], err))
         # signed error: a smallest b_c below the dense reference is on the unsafe side
@@ -120,7 +121,7 @@ def _bound_rows(quick: bool) -> list[dict]:
     from tests.benchmarks.bench_core import control_route
 
     dev = hbfd()
-    w = np.geomspace(1e-4, dev.nyquist * 0.999, 12 if quick else 40)
+    w = np.geomspace(1e-4, dev.nyquist * 0.999, 6 if quick else 40)
     exact = np.array([float(ref.impedance_bound(dev, x)) for x in w])
     band = w >= 1.0
     M, B, K = dev.matrices()
@@ -148,8 +149,7 @@ def _bound_rows(quick: bool) -> list[dict]:
     }
     rows = []
     for name, fn in routes.items():
-        t = timeit(fn, repeat=3 if quick else 20)
-        val = fn()
+        t, val = timed(fn, repeat=20, quick=quick)
         err = np.abs(val - exact) / np.abs(exact)
         rows.append({"name": f"impedance bound, {name}, {w.size} frequencies", "median_ms": t["median_ms"],
                      "max_rel_err_1rad_to_nyq": float(err[band].max()),

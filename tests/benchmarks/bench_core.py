@@ -17,7 +17,7 @@ import numpy as np
 from analysis import ImpedanceDisplay
 from analysis.chain.discretize import hold_factor
 
-from tests.benchmarks.common import hbfd, long_chain, timeit
+from tests.benchmarks.common import hbfd, long_chain, timed, timeit
 
 
 def control_route(device, w: np.ndarray):
@@ -71,9 +71,9 @@ def _evaluations(quick: bool, tuned: bool) -> list[dict]:
     wb = np.geomspace(1.0, big.nyquist * 0.999, 2000)
     label = "tuned allocator" if tuned else "default allocator"
     rows = [{"name": f"HBFD full evaluation, 2000 frequencies ({label})",
-             **timeit(full_eval, repeat=20 if quick else 300), "target_ms": 1.0},
+             **timeit(full_eval, repeat=300, quick=quick), "target_ms": 1.0},
             {"name": f"200-mass chain full evaluation, 2000 frequencies ({label})",
-             **timeit(lambda: ImpedanceDisplay(big).evaluate(1e4, 10.0, wb, refine=False), repeat=3 if quick else 30),
+             **timeit(lambda: ImpedanceDisplay(big).evaluate(1e4, 10.0, wb, refine=False), repeat=30, quick=quick),
              "target_ms": 20.0}]
     return rows
 
@@ -95,6 +95,8 @@ def _evaluations_in_fresh_process(quick: bool, tuned: bool) -> list[dict]:
 
 
 def run(quick: bool = False) -> list[dict]:
+    """``quick``: one call of each; only the default allocator in a fresh process (this process,
+    ``zwidth bench``'s, has the tuned one), 8 mpmath points instead of 40."""
     rows: list[dict] = []
     dev = hbfd()
     w = np.geomspace(1.0, dev.nyquist * 0.999, 2000)
@@ -104,8 +106,8 @@ def run(quick: bool = False) -> list[dict]:
     def big_eval():
         ImpedanceDisplay(big).evaluate(1e4, 10.0, wb, refine=False)
 
-    for tuned in (False, True):
-        rows += _evaluations_in_fresh_process(quick, tuned)
+    rows += _evaluations_in_fresh_process(quick, False)
+    rows += _evaluations(quick, True) if quick else _evaluations_in_fresh_process(quick, True)
     from app.allocator import tune_allocator
 
     tune_allocator(True)
@@ -117,8 +119,8 @@ def run(quick: bool = False) -> list[dict]:
                  "N_times_n_MiB": round(2000 * 200 * 16 / 2**20, 2)})
 
     # python-control side by side (same Y(z), same bound)
-    ours = timeit(lambda: ImpedanceDisplay(dev).bound_result(w), repeat=10 if quick else 100)
-    ctrl = timeit(lambda: control_route(dev, w), repeat=3 if quick else 20)
+    ours = timeit(lambda: ImpedanceDisplay(dev).bound_result(w), repeat=100, quick=quick)
+    ctrl = timeit(lambda: control_route(dev, w), repeat=20, quick=quick)
     w_check = np.geomspace(1.0, dev.nyquist * 0.999, 8 if quick else 40)
     e_ours, e_ctrl = _mp_errors(dev, w_check, ImpedanceDisplay(dev).bound(w_check), control_route(dev, w_check)[1])
     rows.append({"name": "bound via zwidth (Y + eq. 9), 2000 frequencies", **ours,
@@ -127,9 +129,7 @@ def run(quick: bool = False) -> list[dict]:
                  "max_rel_err_vs_mpmath": e_ctrl, "ratio": ctrl["median_ms"] / ours["median_ms"],
                  "target_ratio": 30.0})
 
-    imp = ImpedanceDisplay(dev)
-    t = timeit(lambda: ImpedanceDisplay(dev).max_stiffness(100.0), repeat=5 if quick else 50)
-    d = imp.max_stiffness(100.0)
+    t, d = timed(lambda: ImpedanceDisplay(dev).max_stiffness(100.0), repeat=50, quick=quick)
     rows.append({"name": "largest k_c (b_c = 100), HBFD, cold", **t, "target_ms": 20.0,
                  "kc": d.kc, "frequencies_evaluated": d.evaluations})
     return rows

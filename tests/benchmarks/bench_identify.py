@@ -31,7 +31,7 @@ from analysis.identify import (
     robust_max_stiffness,
 )
 
-from tests.benchmarks.common import hbfd, timeit
+from tests.benchmarks.common import hbfd, timed
 from tests.hbfd_fixtures import hbfd_replicate
 
 T = 1e-3
@@ -48,13 +48,11 @@ def _max_error(fit, dev) -> float:
 def _fit_rows(dev, quick: bool) -> list[dict]:
     rows = []
     ms = _measurements(dev, 400, 0.0, 0)
-    fit = fit_chain(ms, 4, ground_dampings=(3,))
-    t = timeit(lambda: fit_chain(ms, 4, ground_dampings=(3,)), repeat=1 if quick else 7)
+    t, fit = timed(lambda: fit_chain(ms, 4, ground_dampings=(3,)), repeat=7, quick=quick)
     rows.append({"name": "4-mass fit, 400 points, noise-free actuator FRF", **t, "target_ms": 1000.0,
                  "max_rel_error": _max_error(fit, dev)})
     ms = _measurements(dev, 400, 0.01, 1, ("actuator", "gauge"))
-    fit = fit_chain(ms, 4, ground_dampings=(3,))
-    t = timeit(lambda: fit_chain(ms, 4, ground_dampings=(3,)), repeat=1 if quick else 7)
+    t, fit = timed(lambda: fit_chain(ms, 4, ground_dampings=(3,)), repeat=7, quick=quick)
     rows.append({"name": "4-mass fit, 2 x 400 points, 1 % noise, actuator + gauge", **t, "target_ms": 1000.0,
                  "max_rel_error": _max_error(fit, dev)})
     return rows
@@ -69,10 +67,9 @@ def _frf_rows(dev, quick: bool) -> list[dict]:
     u = np.random.default_rng(0).normal(0.0, 10.0, n)
     _, y, _ = signal.dlsim((Phi, Gam, C, np.zeros((1, 1)), T), u)
     t = np.arange(n) * T
-    m = estimate_frf(t, u, y[:, 0], sample_time=T)
+    tm, m = timed(lambda: estimate_frf(t, u, y[:, 0], sample_time=T), repeat=20, quick=quick)
     good = m.coherence > 0.99
     err = np.abs(m.response[good] / device_response(dev, m.frequency[good], sample_time=T) - 1)
-    tm = timeit(lambda: estimate_frf(t, u, y[:, 0], sample_time=T), repeat=3 if quick else 20)
     return [{"name": "Welch H1 FRF from 60 s at 1 kHz (nperseg 4096)", **tm, "target_ms": 200.0,
              "median_rel_error": float(np.median(err)), "max_rel_error": float(np.max(err)),
              "bins_coherence_0.99": int(np.count_nonzero(good))}]
@@ -83,13 +80,11 @@ def _robust_rows(dev, quick: bool) -> list[dict]:
     for field in ("masses", "stiffnesses", "dampings", "ground_dampings"):
         for i, v in enumerate(getattr(dev, field)):
             iv[f"{field}[{i}]"] = (0.9 * v, 1.1 * v) if v > 0 else (0.0, 0.5)
-    r = robust_max_stiffness(dev, 100.0, iv)
-    t = timeit(lambda: robust_max_stiffness(dev, 100.0, iv), repeat=1 if quick else 5)
+    t, r = timed(lambda: robust_max_stiffness(dev, 100.0, iv), repeat=5, quick=quick)
     rows = [{"name": "robust k_c over 14 HBFD parameters (+-10 %)", **t, "target_ms": 2000.0, "kc": r.kc,
              "nominal_kc": r.nominal_kc, "evaluations": r.evaluations}]
     seed_iv = {"ground_dampings[3]": (1.2, 5.0)}
-    r = robust_max_stiffness(dev, 100.0, seed_iv)
-    t = timeit(lambda: robust_max_stiffness(dev, 100.0, seed_iv), repeat=1 if quick else 5)
+    t, r = timed(lambda: robust_max_stiffness(dev, 100.0, seed_iv), repeat=5, quick=quick)
     rows.append({"name": "robust k_c, b4 in [1.2, 5] (Adams et al. section VI)", **t, "kc": r.kc,
                  "nominal_kc": r.nominal_kc})
     return rows
@@ -97,11 +92,10 @@ def _robust_rows(dev, quick: bool) -> list[dict]:
 
 def _tradeoff_rows(dev, quick: bool) -> list[dict]:
     rows = []
-    grid = [(200, 0.01)] if quick else [(n, s) for n in (100, 200, 400, 800) for s in (0.0, 0.001, 0.01)]
+    grid = [(100, 0.01)] if quick else [(n, s) for n in (100, 200, 400, 800) for s in (0.0, 0.001, 0.01)]
     for n_freq, noise in grid:
         ms = _measurements(dev, n_freq, noise, 5, ("actuator", "gauge"))
-        fit = fit_chain(ms, 4, ground_dampings=(3,))
-        t = timeit(lambda: fit_chain(ms, 4, ground_dampings=(3,)), repeat=1 if quick else 3)
+        t, fit = timed(lambda: fit_chain(ms, 4, ground_dampings=(3,)), repeat=3, quick=quick)
         rows.append({"name": f"fit actuator + gauge, {n_freq} points each, noise {noise:g}", **t,
                      "max_rel_error": _max_error(fit, dev)})
     return rows
@@ -123,7 +117,7 @@ def _coverage_rows(dev, quick: bool) -> list[dict]:
     The actuator-alone case scans the handle family and profiles most parameters: about 20 s of
     CPU per replicate."""
     kc_true = ImpedanceDisplay(dev).max_stiffness(100.0).kc
-    reps = 2 if quick else 100
+    reps = 1 if quick else 100
     rows = []
     for quantities in (("actuator", "gauge"),) if quick else (("actuator", "gauge"), ("actuator",)):
         covered, kc_err, robust, methods, hidden = 0, [], [], {}, 0

@@ -18,7 +18,7 @@ from scipy import integrate, optimize
 from analysis.transparency.holds import hold_response
 from analysis.transparency.design import WallDesign
 
-from tests.benchmarks.common import timeit
+from tests.benchmarks.common import timed, timeit
 
 PAPER = dict(mass=0.01, damping=0.022, wall_stiffness=1000.0, wall_damping=1.0, sample_time=1e-3,
              weight_cutoff=100.0)
@@ -60,58 +60,57 @@ def _brute_peak(d: WallDesign, bc: float, n: int, refine: bool) -> float:
 
 
 def run(quick: bool = False) -> list[dict]:
+    """``quick``: one call of each, 2 x 2 quadrature densities, 10 B_c, a 10^5-point peak reference."""
     rows: list[dict] = []
-    rep = 3 if quick else 20
+    rep = 20
 
     # -- J, zoh --------------------------------------------------------------------------------
     d = WallDesign(**PAPER, hold="zoh")
-    ref = _quad_J(15.0, "zoh")
-    t = timeit(lambda: _quad_J(15.0, "zoh"), repeat=1 if quick else 3)
+    t, ref = timed(lambda: _quad_J(15.0, "zoh"), repeat=3, quick=quick)
     rows.append({"name": "J zoh B_c=15: scipy quad, 1300 pieces (reference)", **t, "J": ref})
-    for per_decade in (2, 4, 8) if quick else (1, 2, 4, 8, 16):
-        for order in (4, 8, 16) if quick else (4, 6, 8, 12, 16, 24):
+    for per_decade in (2, 8) if quick else (1, 2, 4, 8, 16):
+        for order in (4, 16) if quick else (4, 6, 8, 12, 16, 24):
             r = d.index_result(15.0, method="quadrature", per_decade=per_decade, order=order)
             t = timeit(lambda: WallDesign(**PAPER, hold="zoh").index_result(15.0, per_decade=per_decade,
-                                                                           order=order), repeat=rep)
+                                                                           order=order), repeat=rep, quick=quick)
             rows.append({"name": f"J zoh B_c=15: Gauss {order} nodes x {per_decade} panels/decade", **t,
                          "nodes": r.nodes, "rel_err_vs_quad": abs(r.index - ref) / ref})
 
     # -- J, lowpass2 ------------------------------------------------------------------------------
     d2 = WallDesign(**PAPER, hold="lowpass2")
-    lyap = d2.index_result(15.0).index
-    t = timeit(lambda: WallDesign(**PAPER, hold="lowpass2").index_result(15.0), repeat=rep)
+    t, lyap_result = timed(lambda: WallDesign(**PAPER, hold="lowpass2").index_result(15.0), repeat=rep, quick=quick)
+    lyap = lyap_result.index
     rows.append({"name": "J lowpass2 B_c=15: Lyapunov (reference)", **t, "J": lyap,
                  "rel_err_vs_quad": abs(lyap - _quad_J(15.0, "lowpass2")) / lyap})
-    r = d2.index_result(15.0, method="quadrature")
-    t = timeit(lambda: WallDesign(**PAPER, hold="lowpass2").index_result(15.0, method="quadrature"), repeat=rep)
+    t, r = timed(lambda: WallDesign(**PAPER, hold="lowpass2").index_result(15.0, method="quadrature"), repeat=rep,
+                 quick=quick)
     rows.append({"name": "J lowpass2 B_c=15: Gauss quadrature (16 x 8/decade)", **t, "nodes": r.nodes,
                  "rel_err_vs_lyapunov": abs(r.index - lyap) / lyap})
-    bcs = np.linspace(0.5, 40, 100)
-    many = d2.index.h2_modal_many(bcs, "lowpass2")
+    bcs = np.linspace(0.5, 40, 10 if quick else 100)
+    t, many = timed(lambda: WallDesign(**PAPER, hold="lowpass2").index.h2_modal_many(bcs, "lowpass2"), repeat=rep,
+                    quick=quick)
     exact = np.array([d2.index_result(x).index for x in bcs])
-    t = timeit(lambda: WallDesign(**PAPER, hold="lowpass2").index.h2_modal_many(bcs, "lowpass2"), repeat=rep)
-    rows.append({"name": "J lowpass2, 100 B_c: batched modal H2", **t,
+    rows.append({"name": f"J lowpass2, {bcs.size} B_c: batched modal H2", **t,
                  "max_rel_err_vs_lyapunov": float(np.max(np.abs(many - exact) / exact))})
 
     # -- ||L||_inf, zoh --------------------------------------------------------------------------
+    dense, dense_label = (100_000, "1e5") if quick else (1_000_000, "1e6")
     for bc in (1.0, 15.0):
-        refp = _brute_peak(d, bc, 1_000_000, refine=True)
-        t = timeit(lambda: _brute_peak(d, bc, 1_000_000, refine=True), repeat=1 if quick else 3)
-        rows.append({"name": f"||L|| zoh B_c={bc:g}: 1e6 grid + Brent (reference)", **t, "gain": refp})
-        for n in (100, 1000, 10_000, 100_000):
-            g = _brute_peak(d, bc, n, refine=False)
-            t = timeit(lambda: _brute_peak(d, bc, n, refine=False), repeat=rep)
+        t, refp = timed(lambda: _brute_peak(d, bc, dense, refine=True), repeat=3, quick=quick)
+        rows.append({"name": f"||L|| zoh B_c={bc:g}: {dense_label} grid + Brent (reference)", **t, "gain": refp})
+        for n in (100, 10_000) if quick else (100, 1000, 10_000, 100_000):
+            t, g = timed(lambda: _brute_peak(d, bc, n, refine=False), repeat=rep, quick=quick)
             rows.append({"name": f"||L|| zoh B_c={bc:g}: fixed log grid, {n} points", **t,
                          "rel_err": abs(g - refp) / refp})
-        p = d.robustness_peak(bc)
-        t = timeit(lambda: WallDesign(**PAPER, hold="zoh").robustness_peak(bc), repeat=rep)
+        t, p = timed(lambda: WallDesign(**PAPER, hold="zoh").robustness_peak(bc), repeat=rep, quick=quick)
         rows.append({"name": f"||L|| zoh B_c={bc:g}: resonance grid + zoom (ours)", **t,
                      "rel_err": abs(p.gain - refp) / refp, "certified": p.certified})
 
     # -- Fig. 8 ------------------------------------------------------------------------------------
     for hold in ("none", "pade", "lowpass2", "zoh", "discrete"):
-        t = timeit(lambda: WallDesign(**PAPER, hold=hold).tradeoff(bcs), repeat=rep)
-        rows.append({"name": f"Fig. 8 curves, 100 B_c, hold={hold} (cold)", **t, "target_ms": 100.0})
+        t = timeit(lambda: WallDesign(**PAPER, hold=hold).tradeoff(bcs), repeat=rep, quick=quick)
+        rows.append({"name": f"Fig. 8 curves, {bcs.size} B_c, hold={hold} (cold)", **t,
+                     **({} if quick else {"target_ms": 100.0})})
     return rows
 
 
