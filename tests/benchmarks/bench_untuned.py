@@ -57,28 +57,28 @@ def _minflt() -> int:
     return resource.getrusage(resource.RUSAGE_SELF).ru_minflt
 
 
-def measure(repeat: int = 300) -> dict[str, dict[str, float]]:
+def measure(repeat: int = 300, quick: bool = False) -> dict[str, dict[str, float]]:
     """Median time and minor page faults per evaluation of each display, in this process with
-    the allocator as it is."""
+    the allocator as it is (``quick``: one call of each, the crash check of ``zwidth bench --quick``)."""
     out = {}
     for display in DISPLAYS:
         fn = full_evaluation(display)
-        for _ in range(20):  # warm up: the workspace and the heap reach their steady state
+        for _ in range(1 if quick else 20):  # warm up: the workspace and the heap reach their steady state
             fn()
         f0 = _minflt()
         for _ in range(repeat):
             fn()
         faults = (_minflt() - f0) / repeat
-        out[display] = {**timeit(fn, repeat=repeat), "minflt_per_eval": faults}
+        out[display] = {**timeit(fn, repeat=repeat, quick=quick), "minflt_per_eval": faults}
     return out
 
 
-def measure_in_fresh_process(tuned: bool, repeat: int = 300) -> dict[str, dict[str, float]]:
+def measure_in_fresh_process(tuned: bool, repeat: int = 300, quick: bool = False) -> dict[str, dict[str, float]]:
     """:func:`measure` in a new interpreter, with ``tune_allocator()`` called first or not at all."""
     root = Path(__file__).resolve().parents[2]
     tune = "from app.allocator import tune_allocator; assert tune_allocator(True); " if tuned else ""
     code = (f"import json; {tune}from tests.benchmarks.bench_untuned import measure; "
-            f"print(json.dumps(measure({repeat!r})))")
+            f"print(json.dumps(measure({repeat!r}, {quick!r})))")
     proc = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True, text=True, check=True,
                           timeout=600)
     return json.loads(proc.stdout.strip().splitlines()[-1])
@@ -87,11 +87,11 @@ def measure_in_fresh_process(tuned: bool, repeat: int = 300) -> dict[str, dict[s
 def run(quick: bool = False) -> list[dict]:
     if not sys.platform.startswith("linux"):  # tune_allocator acts on glibc only: nothing to compare
         return [{"name": "default vs tuned allocator: not Linux, not measured"}]
-    rounds, repeat = (3, 60) if quick else (10, 300)
+    rounds, repeat = (1, 1) if quick else (10, 300)
     runs: dict[tuple[str, bool], list[dict[str, float]]] = {(d, t): [] for d in DISPLAYS for t in (False, True)}
     for i in range(rounds):
         for tuned in ((False, True) if i % 2 == 0 else (True, False)):  # alternate which state goes first
-            res = measure_in_fresh_process(tuned, repeat)
+            res = measure_in_fresh_process(tuned, repeat, quick)
             for d in DISPLAYS:
                 runs[(d, tuned)].append(res[d])
     rows: list[dict] = []
