@@ -31,7 +31,36 @@ DESIGN_KEYS = {kind.name: kind.design_keys for kind in DISPLAY_KINDS.values()}
 
 @dataclass(frozen=True)
 class Headline:
-    """The headline numbers of one display of a profile (see the module docstring)."""
+    """The headline numbers of one display of a profile (see the module docstring).
+
+    Attributes
+    ----------
+    kind : DisplayKind
+        The display type the numbers belong to.
+    stable : bool
+        Whether the coupled display is unconditionally stable (eq. 9 or 21).
+    stability_reserve : float
+        The smallest ``1 - bound/coupling term`` over the band (a fraction, printed in %).
+    binding_frequency : float
+        Where the reserve binds [rad/s].
+    worst_margin : float
+        The smallest margin of eq. (9) [m/(N·s)] or (21) [N·s/m].
+    worst_frequency : float
+        Where the worst margin lies [rad/s].
+    min_eta : float
+        The smallest Llewellyn factor η over the band (eq. 3).
+    k_max : float
+        The largest renderable stiffness [N/m] (eq. 12 or 24).
+    b_min : float
+        The smallest renderable damping [N·s/m] (eq. 11 or 23).
+    apparent_mass : float
+        The apparent free-motion mass [kg].
+    apparent_damping : float
+        The apparent free-motion damping [N·s/m].
+    designs : dict of str to float or None
+        The design values by key (see :func:`designs`); ``None`` for an infeasible design; empty
+        when the designs were not computed.
+    """
 
     kind: DisplayKind
     stable: bool
@@ -48,7 +77,20 @@ class Headline:
 
     @classmethod
     def from_result(cls, result: StabilityResult, designs: dict[str, float | None] | None = None) -> Headline:
-        """The headline of an evaluated :class:`StabilityResult` (what the GUI already has)."""
+        """The headline of an evaluated :class:`StabilityResult` (what the GUI already has).
+
+        Parameters
+        ----------
+        result : StabilityResult
+            Eq. (9) or (21) evaluated at the profile's coupling.
+        designs : dict of str to float or None, optional
+            The designs (:func:`designs`); ``None`` for none.
+
+        Returns
+        -------
+        Headline
+            The headline.
+        """
         return cls(kind=display_kind(result), stable=bool(result.stable), stability_reserve=result.relative_margin,
                    binding_frequency=result.binding_frequency, worst_margin=result.worst_margin,
                    worst_frequency=result.worst_frequency, min_eta=result.min_eta, k_max=result.k_max,
@@ -67,28 +109,89 @@ class Headline:
         return "unconditionally stable" if self.stable else "not unconditionally stable"
 
     def verdict(self) -> str:
-        """The verdict with its question: ``"Virtual coupling (Llewellyn, eq. 9): not unconditionally stable"``."""
+        """The verdict with its question: ``"Virtual coupling (Llewellyn, eq. 9): not unconditionally stable"``.
+
+        Returns
+        -------
+        str
+            :attr:`question` and :attr:`answer`.
+        """
         return f"{self.question}: {self.answer}"
 
     def value(self, key: str) -> Any:
-        """A headline or design value by its key."""
+        """A headline or design value by its key.
+
+        Parameters
+        ----------
+        key : str
+            A key of :data:`HEADLINE_KEYS` or of :attr:`designs`.
+
+        Returns
+        -------
+        Any
+            The value (a bool, a float, or ``None`` for an infeasible design).
+
+        Raises
+        ------
+        AttributeError
+            When ``key`` is neither a headline field nor a design key.
+        """
         return self.designs[key] if key in self.designs else getattr(self, key)
 
     def quantity(self, key: str) -> Quantity:
-        """The :class:`Quantity` of ``key`` (the worst margin in this display's units)."""
+        """The :class:`Quantity` of ``key`` (the worst margin in this display's units).
+
+        Parameters
+        ----------
+        key : str
+            A key of :data:`~analysis.study.quantities.QUANTITIES`.
+
+        Returns
+        -------
+        Quantity
+            The quantity (:func:`~analysis.study.quantities.quantity`).
+        """
         return quantity(key, self.kind.margin_unit)
 
     def text(self, key: str, *, unit: bool = True, rich: bool = False) -> str:
-        """``key``'s value as every front end prints it."""
+        """``key``'s value as every front end prints it.
+
+        Parameters
+        ----------
+        key : str
+            A key of :data:`HEADLINE_KEYS` or of :attr:`designs`.
+        unit : bool, optional
+            Append the unit (default ``True``).
+        rich : bool, optional
+            Qt rich text / HTML instead of plain text.
+
+        Returns
+        -------
+        str
+            The value printed by :meth:`Quantity.format`.
+        """
         return self.quantity(key).format(self.value(key), unit=unit, rich=rich)
 
     def rows(self) -> list[tuple[Quantity, Any]]:
-        """(quantity, value) of the verdict, then of the designs."""
+        """(quantity, value) of the verdict, then of the designs.
+
+        Returns
+        -------
+        list of (Quantity, Any)
+            One row per key of :data:`HEADLINE_KEYS`, then per design key of the display that
+            :attr:`designs` holds, in print order.
+        """
         keys = HEADLINE_KEYS + tuple(k for k in self.kind.design_keys if k in self.designs)
         return [(self.quantity(k), self.value(k)) for k in keys]
 
     def as_dict(self) -> dict[str, Any]:
-        """Plain values by key (the verdict and the designs)."""
+        """Plain values by key (the verdict and the designs).
+
+        Returns
+        -------
+        dict of str to Any
+            The values of :meth:`rows` by their quantity's key.
+        """
         return {q.key: v for q, v in self.rows()}
 
 
@@ -113,11 +216,30 @@ def _admittance_designs(profile: Profile, disp: AdmittanceDisplay) -> dict[str, 
 
 def designs(profile: Profile, kind: DisplayKind | str | None = None,
             display: DisplayBase | None = None) -> dict[str, float | None]:
-    """The conservative designs of one display: the largest k_c at the profile's b_c (eq. 9),
-    or the feasible b_c interval at the profile's m_c and the smallest m_c (eq. 21).
+    """The conservative designs of one display.
+
+    The largest k_c at the profile's b_c (eq. 9), or the feasible b_c interval at the profile's
+    m_c and the smallest m_c (eq. 21).
 
     Keys: :data:`DESIGN_KEYS` plus ``kc_max_margin`` (the worst margin at k_c,max) and
-    ``min_mc_bc_low``/``min_mc_bc_high`` (the feasible b_c interval at m_c,min)."""
+    ``min_mc_bc_low``/``min_mc_bc_high`` (the feasible b_c interval at m_c,min).
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+    kind : DisplayKind or str or None, optional
+        The display type; ``None`` takes the profile's.
+    display : DisplayBase or None, optional
+        A built display object of this type (:meth:`DisplayKind.build`), to reuse its cache;
+        ``None`` builds a fresh one.
+
+    Returns
+    -------
+    dict of str to float or None
+        The design values in SI units (N/m, N·s/m, kg, rad/s) by key; ``None`` where the design
+        is infeasible.
+    """
     k = display_kind(profile if kind is None else kind)
     disp = k.build(profile) if display is None else display
     if isinstance(disp, ImpedanceDisplay):
@@ -127,7 +249,22 @@ def designs(profile: Profile, kind: DisplayKind | str | None = None,
 
 
 def headline(profile: Profile, kind: DisplayKind | str | None = None, *, with_designs: bool = True) -> Headline:
-    """The headline of ``profile`` for its display (or ``kind``), designs included by default."""
+    """The headline of ``profile`` for its display (or ``kind``), designs included by default.
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+    kind : DisplayKind or str or None, optional
+        The display type; ``None`` takes the profile's.
+    with_designs : bool, optional
+        Compute the designs too (default ``True``).
+
+    Returns
+    -------
+    Headline
+        The verdict, the impedance range and (with ``with_designs``) the designs.
+    """
     k = display_kind(profile if kind is None else kind)
     disp = k.build(profile)
     result = k.evaluate(profile, disp)

@@ -40,5 +40,16 @@ SCENARIO_TIPS = {
 
 
 def scenario_title(name: str) -> str:
-    """The scenario's readable name (a custom name is shown as it is)."""
+    """The scenario's readable name (a custom name is shown as it is).
+
+    Parameters
+    ----------
+    name : str
+        The scenario's name (``SimulationSection.scenario.name``), e.g. ``"wall_push"``.
+
+    Returns
+    -------
+    str
+        Its title from :data:`SCENARIO_TITLES`, or ``name`` itself for a custom scenario.
+    """
     return SCENARIO_TITLES.get(name, name)

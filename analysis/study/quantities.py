@@ -31,9 +31,21 @@ _E_NUMBER = re.compile(r"(?<![\w.])(-?\d+(?:\.\d+)?)e([+-]?\d+)(?!\w)")
 
 
 def rich_numbers(text: str) -> str:
-    """Every ``1.2e+05`` of a plain text as ``1.2×10<sup>5</sup>`` (Qt rich text / HTML), the way
-    :func:`format_number` prints with ``rich=True``: for a line built from plain numbers that a
-    view also shows as rich text."""
+    """Every ``1.2e+05`` of a plain text as ``1.2×10<sup>5</sup>`` (Qt rich text / HTML).
+
+    The way :func:`format_number` prints with ``rich=True``: for a line built from plain numbers
+    that a view also shows as rich text.
+
+    Parameters
+    ----------
+    text : str
+        Plain text with numbers in ``e`` notation.
+
+    Returns
+    -------
+    str
+        The text with every such number typeset as rich text (a true minus sign in the exponent).
+    """
     return _E_NUMBER.sub(lambda m: _rich(f"{m.group(1)}e{m.group(2)}"), text)
 
 
@@ -41,8 +53,21 @@ _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
 def superscript_numbers(text: str) -> str:
-    """Every ``2.55e+11`` of a plain text as ``2.55×10¹¹`` in Unicode superscripts: the same
-    typesetting for places that show plain text only (a plot's text items)."""
+    """Every ``2.55e+11`` of a plain text as ``2.55×10¹¹`` in Unicode superscripts.
+
+    The same typesetting for places that show plain text only (a plot's text items).
+
+    Parameters
+    ----------
+    text : str
+        Plain text with numbers in ``e`` notation.
+
+    Returns
+    -------
+    str
+        The text with every such number written with a superscript exponent and a true minus
+        sign.
+    """
     def sub(m: re.Match) -> str:
         return f"{m.group(1).replace('-', '−')}×10{str(int(m.group(2))).translate(_SUPERSCRIPT)}"
 
@@ -50,12 +75,31 @@ def superscript_numbers(text: str) -> str:
 
 
 def format_number(value: Any, digits: int = DIGITS, *, scale: float = 1.0, rich: bool = False) -> str:
-    """A number as zwidth prints it: ``None`` -> "infeasible", NaN -> "n/a", +-inf -> "∞"/"-∞",
-    booleans -> "yes"/"no", else ``digits`` significant digits.  ``rich`` (Qt rich text / HTML)
-    typesets the exponent (``1.2×10<sup>5</sup>``) and the minus sign (``−``).
+    """A number as zwidth prints it.
+
+    ``None`` -> "infeasible", NaN -> "n/a", +-inf -> "∞"/"-∞", booleans -> "yes"/"no", else
+    ``digits`` significant digits.  ``rich`` (Qt rich text / HTML) typesets the exponent
+    (``1.2×10<sup>5</sup>``) and the minus sign (``−``).
 
     The one rule: the GUI's views, the verdict, ``zwidth analyze`` and the report all print
-    numbers through it."""
+    numbers through it.
+
+    Parameters
+    ----------
+    value : Any
+        The number: a float or int, a numpy scalar, a bool, or ``None`` (an infeasible design).
+    digits : int, optional
+        Significant digits (default :data:`DIGITS`).
+    scale : float, optional
+        Factor applied before printing (100 prints a fraction in per cent).
+    rich : bool, optional
+        Qt rich text / HTML instead of plain text.
+
+    Returns
+    -------
+    str
+        The printed number, without a unit.
+    """
     if value is None:
         return "infeasible"
     if isinstance(value, bool) or type(value).__name__ == "bool_":
@@ -71,7 +115,23 @@ def format_number(value: Any, digits: int = DIGITS, *, scale: float = 1.0, rich:
 
 @dataclass(frozen=True)
 class Quantity:
-    """A result's key, name, symbol (plain text, e.g. ``k_max``), unit, and how it is printed."""
+    """A result's key, name, symbol (plain text, e.g. ``k_max``), unit, and how it is printed.
+
+    Attributes
+    ----------
+    key : str
+        The result's key, e.g. ``"k_max"`` (the key of :data:`QUANTITIES` and of the summaries).
+    name : str
+        Its name for people, e.g. ``"largest renderable stiffness"``.
+    symbol : str
+        Plain-text symbol, e.g. ``"k_max"``; empty when it has none.
+    unit : str
+        Unit, e.g. ``"N/m"``; empty for a dimensionless number.
+    digits : int
+        Significant digits of the printed number.
+    scale : float
+        Printed value = value * scale (100 for a fraction printed in %).
+    """
 
     key: str
     name: str
@@ -81,17 +141,62 @@ class Quantity:
     scale: float = 1.0  # printed value = value * scale (100 for a fraction printed in %)
 
     def number(self, value: Any, *, rich: bool = False) -> str:
-        """The printed number without its unit."""
+        """The printed number without its unit.
+
+        Parameters
+        ----------
+        value : Any
+            The value in the data's units (a fraction for a per-cent quantity), or ``None``.
+        rich : bool, optional
+            Qt rich text / HTML instead of plain text.
+
+        Returns
+        -------
+        str
+            The number as :func:`format_number` prints it with this quantity's digits and scale.
+        """
         return format_number(value, self.digits, scale=self.scale, rich=rich)
 
     def format(self, value: Any, *, unit: bool = True, rich: bool = False) -> str:
-        """The printed number with its unit (none after "∞" or a word such as "infeasible")."""
+        """The printed number with its unit (none after "∞" or a word such as "infeasible").
+
+        Parameters
+        ----------
+        value : Any
+            The value in the data's units (a fraction for a per-cent quantity), or ``None``.
+        unit : bool, optional
+            Append the unit (default ``True``).
+        rich : bool, optional
+            Qt rich text / HTML instead of plain text.
+
+        Returns
+        -------
+        str
+            The printed number, followed by the unit for a finite value.
+        """
         text = self.number(value, rich=rich)
         finite = value is not None and not isinstance(value, bool) and math.isfinite(float(value))
         return f"{text} {self.unit}" if unit and self.unit and finite else text
 
     def parse(self, text: str) -> float:
-        """The value back from :meth:`format`'s plain text (tests compare printed outputs)."""
+        """The value back from :meth:`format`'s plain text (tests compare printed outputs).
+
+        Parameters
+        ----------
+        text : str
+            Plain text as :meth:`format` prints it, with or without its unit; "∞", "-∞", "n/a"
+            and the older spelling "unbounded" are read too.
+
+        Returns
+        -------
+        float
+            The value in the data's units (the printed number divided by :attr:`scale`).
+
+        Raises
+        ------
+        ValueError
+            When the text is not a number.
+        """
         word = text.split()[0] if text.split() else text
         special = {"∞": math.inf, "-∞": -math.inf, "−∞": -math.inf, "n/a": math.nan,
                    "unbounded": math.inf, "-unbounded": -math.inf}  # the spelling before the one "∞"
@@ -133,8 +238,28 @@ QUANTITIES: dict[str, Quantity] = {q.key: q for q in (
 
 
 def quantity(key: str, margin_unit: str | None = None) -> Quantity:
-    """The quantity ``key``; ``margin_unit`` (the display's, see ``DisplayKind.margin_unit``)
-    completes the worst margin, whose unit is that of eq. (9) or (21)."""
+    """The quantity ``key``, with the display's unit for the worst margin.
+
+    ``margin_unit`` (the display's, see ``DisplayKind.margin_unit``) completes the worst margin,
+    whose unit is that of eq. (9) or (21).
+
+    Parameters
+    ----------
+    key : str
+        A key of :data:`QUANTITIES`, e.g. ``"k_max"``.
+    margin_unit : str or None, optional
+        The unit of ``"worst_margin"``; ignored for the other keys.
+
+    Returns
+    -------
+    Quantity
+        The quantity.
+
+    Raises
+    ------
+    KeyError
+        When ``key`` is not a key of :data:`QUANTITIES`.
+    """
     q = QUANTITIES[key]
     if key == "worst_margin" and margin_unit is not None:
         return replace(q, unit=margin_unit)

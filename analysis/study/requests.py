@@ -35,16 +35,44 @@ Range = tuple[float, float]
 
 
 def scenario_matches(profile: Profile, sc: Scenario) -> bool:
-    """False for the paper's worst case of the *other* display (e.g. ``impedance_worst_case``, a
-    penalty wall, on an admittance display); any other scenario is the user's choice and matches."""
+    """False for the paper's worst case of the *other* display, True for any other scenario.
+
+    E.g. ``impedance_worst_case``, a penalty wall, on an admittance display does not match; any
+    other scenario is the user's choice and matches.
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile (its display).
+    sc : Scenario
+        The scenario.
+
+    Returns
+    -------
+    bool
+        Whether the scenario fits the profile's display.
+    """
     own = f"{display_kind(profile).name}_worst_case"
     return not (sc.name.endswith("_worst_case") and sc.name in SCENARIOS and sc.name != own)
 
 
 def simulation_section(profile: Profile) -> SimulationSection:
-    """What the Sampled-data tab simulates: the profile's simulation section, its scenario following
-    the display (:func:`scenario_matches`: the other display's worst case becomes this display's,
-    the options kept), or, without a section, ideal sensors and the paper's worst case for its display."""
+    """What the Sampled-data tab simulates.
+
+    The profile's simulation section, its scenario following the display
+    (:func:`scenario_matches`: the other display's worst case becomes this display's, the options
+    kept), or, without a section, ideal sensors and the paper's worst case for its display.
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+
+    Returns
+    -------
+    SimulationSection
+        The scenario and the simulation options.
+    """
     own = scenario(f"{display_kind(profile).name}_worst_case")
     if profile.simulation is None:
         return SimulationSection(options=SimulationOptions(), scenario=own)
@@ -54,26 +82,68 @@ def simulation_section(profile: Profile) -> SimulationSection:
 
 
 def delays(profile: Profile) -> tuple[int, bool]:
-    """``(delay_samples, implementation_delay)`` of the profile's simulation section."""
+    """``(delay_samples, implementation_delay)`` of the profile's simulation section.
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+
+    Returns
+    -------
+    tuple of (int, bool)
+        The loop's delay in samples and whether it has the one-sample implementation delay (of
+        :func:`simulation_section`'s options).
+    """
     o = simulation_section(profile).options
     return o.delay_samples, o.implementation_delay
 
 
 @dataclass(frozen=True)
 class StabilityRequest:
-    """Eq. (9) or (21): the device model and the coupling gains (``(k_c, b_c)`` or ``(m_c, b_c)``)."""
+    """Eq. (9) or (21): the device model and the coupling gains (``(k_c, b_c)`` or ``(m_c, b_c)``).
+
+    Attributes
+    ----------
+    model : DeviceRequest
+        The device model of the profile's display.
+    coupling : tuple of (float, float)
+        ``(k_c [N/m], b_c [N·s/m])`` or ``(m_c [kg], b_c [N·s/m])``.
+    """
 
     model: DeviceRequest
     coupling: tuple[float, float]
 
     @classmethod
     def of(cls, profile: Profile) -> StabilityRequest:
+        """The request of ``profile`` at its display and coupling.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+
+        Returns
+        -------
+        StabilityRequest
+            The request.
+        """
         return cls(DeviceRequest.of(profile), display_kind(profile).coupling(profile))
 
 
 @dataclass(frozen=True)
 class ChartRequest:
-    """The design chart: the device model and its grid (b_c for impedance, m_c for admittance)."""
+    """The design chart: the device model and its grid (b_c for impedance, m_c for admittance).
+
+    Attributes
+    ----------
+    model : DeviceRequest
+        The device model of the chart's display.
+    grid : tuple of (float, float)
+        The range of the geometric grid: b_c [N·s/m] (impedance) or m_c [kg] (admittance).
+    points : int
+        Number of grid points.
+    """
 
     model: DeviceRequest
     grid: Range
@@ -82,6 +152,26 @@ class ChartRequest:
     @classmethod
     def of(cls, profile: Profile, kind: DisplayKind | str | None = None, *, bc_range: Range, mc_range: Range,
            points: int) -> ChartRequest:
+        """The request of ``profile``'s display (or of ``kind``) on the grid of that display.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+        kind : DisplayKind or str or None, optional
+            The display type; ``None`` takes the profile's.
+        bc_range : tuple of (float, float)
+            The b_c range [N·s/m], used for the impedance display.
+        mc_range : tuple of (float, float)
+            The m_c range [kg], used for the admittance display.
+        points : int
+            Number of grid points.
+
+        Returns
+        -------
+        ChartRequest
+            The request.
+        """
         model = DeviceRequest.of(profile, kind)
         grid = bc_range if model.pd is None else mc_range
         return cls(model, (float(grid[0]), float(grid[1])), int(points))
@@ -89,8 +179,26 @@ class ChartRequest:
 
 @dataclass(frozen=True)
 class LoopRequest:
-    """The exact sampled-data loop: device, velocity filter, display, coupling (``None`` where the
-    computation sweeps it), PD gains (``None`` where unused) and the delays."""
+    """The exact sampled-data loop: device, velocity filter, display, coupling, PD gains, delays.
+
+    Attributes
+    ----------
+    display : str
+        The display type: ``"impedance"`` or ``"admittance"``.
+    device : Device
+        The device chain.
+    velocity_filter : VelocityFilter or None
+        The controller's velocity filter, ``None`` for the backward difference.
+    coupling : tuple of (float, float) or None
+        ``(k_c [N/m], b_c [N·s/m])`` or ``(m_c [kg], b_c [N·s/m])``; ``None`` where the
+        computation sweeps it.
+    pd : tuple of (float, float) or None
+        The PD position-loop gains ``(k_p [N/m], k_d [N·s/m])`` (eq. 30); ``None`` where unused.
+    delay_samples : int
+        The loop's delay, in samples.
+    implementation_delay : bool
+        Whether the loop has the one-sample implementation delay.
+    """
 
     display: str
     device: Device
@@ -102,8 +210,26 @@ class LoopRequest:
 
     @classmethod
     def of(cls, profile: Profile, *, coupling: bool = True, pd: bool = True) -> LoopRequest:
-        """``coupling=False`` leaves the coupling out; ``pd=False`` leaves the PD gains out on the
-        impedance display (where the computation does not read them)."""
+        """The loop of ``profile``.
+
+        ``coupling=False`` leaves the coupling out; ``pd=False`` leaves the PD gains out on the
+        impedance display (where the computation does not read them).
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+        coupling : bool, optional
+            Include the coupling gains (default ``True``).
+        pd : bool, optional
+            Include the PD gains on the impedance display (default ``True``; the admittance
+            display always has them).
+
+        Returns
+        -------
+        LoopRequest
+            The request.
+        """
         kind = display_kind(profile)
         d, impl = delays(profile)
         gains = (float(profile.kp), float(profile.kd)) if pd or not kind.is_impedance else None
@@ -117,7 +243,19 @@ class LoopRequest:
 
 @dataclass(frozen=True)
 class MapRequest:
-    """The sampled-data stability map: the loop and its two axes (names, ranges, points per axis)."""
+    """The sampled-data stability map: the loop and its two axes (names, ranges, points per axis).
+
+    Attributes
+    ----------
+    loop : LoopRequest
+        The loop, with its coupling and PD gains.
+    x, y : str
+        The axes' parameters (keys of :data:`~analysis.study.labels.PARAMETER_LABELS`).
+    x_range, y_range : tuple of (float, float)
+        The axes' ranges (geometric grids), in the parameters' units.
+    points : int
+        Grid points per axis.
+    """
 
     loop: LoopRequest
     x: str
@@ -128,13 +266,41 @@ class MapRequest:
 
     @classmethod
     def of(cls, profile: Profile, params: dict[str, Any]) -> MapRequest:
+        """The map of ``profile`` with the map parameters ``params``.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+        params : dict of str to Any
+            ``x``, ``x_range``, ``y``, ``y_range`` and ``points``, as
+            :func:`~analysis.study.compute.map_params` gives them.
+
+        Returns
+        -------
+        MapRequest
+            The request.
+
+        Raises
+        ------
+        KeyError
+            When ``params`` lacks one of its keys.
+        """
         return cls(LoopRequest.of(profile), str(params["x"]), tuple(params["x_range"]), str(params["y"]),
                    tuple(params["y_range"]), int(params["points"]))
 
 
 @dataclass(frozen=True)
 class PointRequest:
-    """The current design on a map of ``x`` and ``y`` (one point of :class:`MapRequest`)."""
+    """The current design on a map of ``x`` and ``y`` (one point of :class:`MapRequest`).
+
+    Attributes
+    ----------
+    loop : LoopRequest
+        The loop, with its coupling and PD gains.
+    x, y : str
+        The map's parameters (keys of :data:`~analysis.study.labels.PARAMETER_LABELS`).
+    """
 
     loop: LoopRequest
     x: str
@@ -142,12 +308,38 @@ class PointRequest:
 
     @classmethod
     def of(cls, profile: Profile, x: str, y: str) -> PointRequest:
+        """The current design of ``profile`` on a map of ``x`` and ``y``.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+        x : str
+            The map's x parameter.
+        y : str
+            The map's y parameter.
+
+        Returns
+        -------
+        PointRequest
+            The request.
+        """
         return cls(LoopRequest.of(profile), str(x), str(y))
 
 
 @dataclass(frozen=True)
 class ExactChartRequest:
-    """The exact limit over b_c: the loop without its coupling (swept), its b_c grid."""
+    """The exact limit over b_c: the loop without its coupling (swept), its b_c grid.
+
+    Attributes
+    ----------
+    loop : LoopRequest
+        The loop without its coupling (and without the PD gains on the impedance display).
+    bc_range : tuple of (float, float)
+        The range of the geometric b_c grid [N·s/m].
+    points : int
+        Number of b_c grid points.
+    """
 
     loop: LoopRequest
     bc_range: Range
@@ -155,29 +347,85 @@ class ExactChartRequest:
 
     @classmethod
     def of(cls, profile: Profile, bc_range: Range, points: int) -> ExactChartRequest:
+        """The exact limit chart of ``profile`` on the b_c grid.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+        bc_range : tuple of (float, float)
+            The b_c range [N·s/m].
+        points : int
+            Number of b_c grid points.
+
+        Returns
+        -------
+        ExactChartRequest
+            The request.
+        """
         return cls(LoopRequest.of(profile, coupling=False, pd=False), (float(bc_range[0]), float(bc_range[1])),
                    int(points))
 
 
 @dataclass(frozen=True)
 class ExactLimitRequest:
-    """The exact limit at one b_c (the coupling's damping; the other gain is what is found)."""
+    """The exact limit at one b_c (the coupling's damping; the other gain is what is found).
+
+    Attributes
+    ----------
+    loop : LoopRequest
+        The loop without its coupling (and without the PD gains on the impedance display).
+    bc : float
+        The coupling damping b_c [N·s/m].
+    """
 
     loop: LoopRequest
     bc: float
 
     @classmethod
     def of(cls, profile: Profile) -> ExactLimitRequest:
+        """The exact limit of ``profile`` at its b_c.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+
+        Returns
+        -------
+        ExactLimitRequest
+            The request.
+        """
         return cls(LoopRequest.of(profile, coupling=False, pd=False), display_kind(profile).coupling(profile)[1])
 
 
 @dataclass(frozen=True)
 class SimulationRequest:
-    """One simulator run: the loop and the simulation section (scenario and options) it runs."""
+    """One simulator run: the loop and the simulation section (scenario and options) it runs.
+
+    Attributes
+    ----------
+    loop : LoopRequest
+        The loop, with its coupling and PD gains.
+    section : SimulationSection
+        The scenario and the options (:func:`simulation_section`).
+    """
 
     loop: LoopRequest
     section: SimulationSection
 
     @classmethod
     def of(cls, profile: Profile) -> SimulationRequest:
+        """The simulator run of ``profile``.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+
+        Returns
+        -------
+        SimulationRequest
+            The request.
+        """
         return cls(LoopRequest.of(profile), simulation_section(profile))
