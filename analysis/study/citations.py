@@ -39,7 +39,21 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Reference:
-    """One paper: ``short`` is how the program names it ("Adams, Moreyra & Hannaford")."""
+    """One paper: ``short`` is how the program names it ("Adams, Moreyra & Hannaford").
+
+    Attributes
+    ----------
+    short : str
+        How the program names the paper, e.g. ``"Adams, Moreyra & Hannaford"``.
+    authors : str
+        The authors as cited, e.g. ``"Adams, R. J., Moreyra, M. R., & Hannaford, B."``.
+    year : int
+        Year of publication.
+    title : str
+        Title of the paper.
+    venue : str
+        Where it appeared (proceedings or journal, volume, pages).
+    """
 
     short: str
     authors: str
@@ -48,15 +62,33 @@ class Reference:
     venue: str
 
     def text(self) -> str:
-        """Plain full citation: ``Authors (year). Title. Venue.``"""
+        """Plain full citation: ``Authors (year). Title. Venue.``
+
+        Returns
+        -------
+        str
+            The citation as plain text.
+        """
         return f"{self.authors} ({self.year}). {self.title}. {self.venue}."
 
     def markup(self) -> str:
-        """The citation with the title in ``*italics*`` (Markdown and reStructuredText)."""
+        """The citation with the title in ``*italics*`` (Markdown and reStructuredText).
+
+        Returns
+        -------
+        str
+            The citation as markup.
+        """
         return f"{self.authors} ({self.year}). *{self.title}*. {self.venue}."
 
     def html(self) -> str:
-        """The citation as escaped HTML with the title in ``<i>``."""
+        """The citation as escaped HTML with the title in ``<i>``.
+
+        Returns
+        -------
+        str
+            The citation as HTML.
+        """
         return (f"{_html.escape(self.authors)} ({self.year}). <i>{_html.escape(self.title)}</i>. "
                 f"{_html.escape(self.venue)}.")
 
@@ -122,9 +154,23 @@ REFERENCES: tuple[Reference, ...] = (ADAMS, EOM, COLGATE_BROWN, COLGATE_SCHENKEL
 
 
 def citation_text(primary: Reference, *others: Reference) -> str:
-    """The note of a page whose equation numbers refer to ``primary`` and that also names
-    ``others``: one paragraph, "Equation numbers refer to <full citation>. Also cited: <full
-    citation> <full citation>"."""
+    """The note of a page whose equation numbers refer to ``primary`` and that also names ``others``.
+
+    One paragraph, "Equation numbers refer to <full citation>. Also cited: <full citation>
+    <full citation>".
+
+    Parameters
+    ----------
+    primary : Reference
+        The paper whose equation numbers the page shows.
+    *others : Reference
+        Other papers the page cites.
+
+    Returns
+    -------
+    str
+        The note, in plain text.
+    """
     text = f"Equation numbers refer to {primary.text()}"
     if others:
         text += " Also cited: " + " ".join(r.text() for r in others)
