@@ -11,6 +11,9 @@ import pytest
 from analysis import Device, ValidationError
 from analysis.identify import (
     ChainFit,
+    ChainParameters,
+    FitProblem,
+    Measurement,
     device_response,
     device_value,
     fit_chain,
@@ -20,6 +23,8 @@ from analysis.identify import (
 )
 
 from tests.hbfd_fixtures import make_hbfd
+
+pytestmark = pytest.mark.numerics
 
 T = 1e-3
 W = np.geomspace(1.0, 0.95 * math.pi / T, 400)  # 400 log-spaced points, 1 rad/s .. 0.95 Nyquist
@@ -75,14 +80,24 @@ def test_any_parameter_fixed_at_its_true_value_recovers_every_other_from_the_aut
     assert fit.converged and fit.residual < 1e-8
 
 
+def _truth_residual(device: Device, m: Measurement, keys: tuple[str, ...]) -> float:
+    """The fit's residual (RMS of the weighted real residuals) of the true device on ``m``: the noise floor."""
+    problem = FitProblem((m,), keys, ChainParameters.from_device(device), 0)
+    return float(np.sqrt(np.mean(problem.residual(np.log([device_value(device, k) for k in keys])) ** 2)))
+
+
 def test_a_fixed_handle_mass_at_one_percent_noise_still_fits_to_the_noise_floor():
     # The released fit places the (non-identifiable) handle mode with a tiny mass; putting the
     # known mass back rescales the handle side so that the mode stays where the data put it.
-    m = _measure(make_hbfd(), noise=0.01, seed=5)
-    free = fit_chain([m], 4, ground_dampings=(3,), intervals="wald")  # the residuals only: no profiles
+    # The floor is the true device's residual on the same data, not another optimizer run (which
+    # optimum a free fit reaches depends on the BLAS kernel, issue 21): least squares over 10 free
+    # parameters must fit at least as well as the truth (about 10 s^2 of 790 below it, 0.6 % in
+    # the RMS; measured 0.8 % below on every kernel).
+    d = make_hbfd()
+    m = _measure(d, noise=0.01, seed=5)
     for mass in (0.2, 0.25):
         fit = fit_chain([m], 4, ground_dampings=(3,), fixed={"masses[0]": mass}, intervals="wald")
-        assert fit.residual < 1.01 * free.residual
+        assert fit.residual <= _truth_residual(d, m, fit.keys)
         assert fit.value("stiffnesses[2]") == pytest.approx(874e3, rel=0.01)
 
 

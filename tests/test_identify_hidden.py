@@ -11,7 +11,9 @@
   puts k_1 in series with k_0: unbounded, and said so), and the fitted k_c at b_c = 100 is within
   5 % of the true device's.
 * Undetected, the reported device is the merged chain (the BIC's choice), not the lower-RSS chain
-  whose handle fits noise: seed 2005, where least squares put k_c 8 % above the truth.
+  whose handle fits noise: seed 2005, where least squares put k_c 8 % above the truth.  Which
+  optimum least squares reaches depends on the BLAS kernel (issue 21), so it is never asserted:
+  the reported device's properties are.
 * With the gauge added the handle mode is detected and nothing changes: Wald intervals, no
   family, the statistic far above the criterion.
 * Cancel: the fit asks ``cancelled()`` before every model evaluation and stops at the first True
@@ -21,6 +23,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -39,6 +42,8 @@ from analysis.identify import (
 from analysis.study import identify_chain
 
 from tests.hbfd_fixtures import hbfd_replicate, make_hbfd
+
+pytestmark = pytest.mark.numerics
 
 T = 1e-3
 W = np.geomspace(1.0, 0.95 * math.pi / T, 400)
@@ -113,25 +118,39 @@ def test_the_actuator_alone_intervals_hold_the_truth_where_they_used_to_miss():
     assert kc == pytest.approx(ImpedanceDisplay(d).max_stiffness(100.0).kc, rel=0.05)
 
 
+def _detection(fit) -> tuple[float, float]:
+    """D and 3 ln R of the "handle mode is not detected" warning (the numbers the user reads)."""
+    note = next(w for w in fit.warnings if "handle mode is not detected" in w)
+    found = re.search(r"higher by (\S+) s\^2, at most 3 ln R = (\S+)\)", note)
+    assert found, note
+    return float(found.group(1)), float(found.group(2))
+
+
 def test_with_the_mode_undetected_the_fitted_device_is_the_merged_chain():
-    """Seed 2005: the lowest RSS found belongs to a handle fitted to noise (1.3 g on 43 N/m), whose
-    k_c at b_c = 100 is 8 % above the true device's.  The BIC prefers the chain without the handle,
-    and that is the device reported: its RSS is an independent 3-mass fit's, its k_c is below the
-    truth's and within 5 %, and every interval contains its values."""
+    """Seed 2005: the handle mode is not detected, and the device reported is the merged chain (the
+    BIC's choice), whatever optimum least squares reaches.  On one kernel that optimum was a 1.3 g
+    handle on 43 N/m fitting noise, with k_c at b_c = 100 8 % above the truth; another kernel's
+    least squares (AVX-512) stopped elsewhere: which optimum the 4-mass least squares finds is its
+    floating-point path, not the product, so it is not asserted.  Asserted: the detection decides
+    as docs/guide/identify.md says, the reported device's RSS is an independent 3-mass fit's, its k_c
+    is conservative and within 5 % of the truth, and every interval holds its values and the truth."""
     d = make_hbfd()
     ms = _measurements(d, 2005)
     fit = fit_chain(ms, 4, ground_dampings=(3,))
-    quick = fit_chain(ms, 4, ground_dampings=(3,), intervals="wald")  # no detection test: least squares
     fit3 = fit_chain(ms, 3, ground_dampings=(2,), intervals="wald")
     s2 = fit.rss / fit.dof
+    statistic, critical = _detection(fit)
+    # not detected: D <= 3 ln R with R = 800 real residuals (D ~ 7, far from 20.1 on every kernel)
+    assert critical == pytest.approx(3 * math.log(800), abs=0.05) and statistic <= critical  # 3 digits
+    # the merged chain is the 3-mass optimum (a well-determined fit: every kernel agrees to 1e-7 s^2)
     assert abs(fit.rss - fit3.rss) < 0.05 * s2
-    assert quick.rss < fit.rss - 3 * s2
     m0, m1 = fit.value("masses[0]"), fit.value("masses[1]")
     assert m0 / (m0 + m1) == pytest.approx(MERGED_SHARE, rel=0.2)
     assert math.sqrt(fit.value("stiffnesses[0]") / m0) > 5 * W[-1]
+    for k in HANDLE:
+        assert fit.intervals[k] == (0.0, math.inf)
     kc_true = ImpedanceDisplay(d).max_stiffness(100.0).kc
-    assert ImpedanceDisplay(quick.device).max_stiffness(100.0).kc > 1.05 * kc_true
-    assert 0.95 * kc_true < ImpedanceDisplay(fit.device).max_stiffness(100.0).kc < kc_true
+    assert 0.95 * kc_true < ImpedanceDisplay(fit.device).max_stiffness(100.0).kc <= kc_true
     for k, v in zip(fit.keys, fit.values):
         lo, hi = fit.intervals[k]
         assert lo <= v <= hi, (k, lo, v, hi)

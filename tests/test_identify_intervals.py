@@ -31,6 +31,8 @@ from analysis.identify import (
 
 from tests.hbfd_fixtures import make_hbfd, with_noise
 
+pytestmark = pytest.mark.numerics
+
 T = 1e-3
 W = np.geomspace(1.0, 0.95 * math.pi / T, 400)
 

@@ -13,6 +13,8 @@ from analysis.identify import chain_from_spectrum, device_response, spectrum_fro
 
 from tests.hbfd_fixtures import make_hbfd
 
+pytestmark = pytest.mark.numerics
+
 T = 1e-3
 W = np.geomspace(1.0, 0.95 * np.pi / T, 60)
 

@@ -17,6 +17,8 @@ from analysis.identify import (
 
 from tests.hbfd_fixtures import make_hbfd
 
+pytestmark = pytest.mark.numerics
+
 HBFD = "resources/profiles/hbfd.json"
 
 

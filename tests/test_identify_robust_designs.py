@@ -4,6 +4,7 @@ sampled-data critical k_c, and a fit's intervals feeding the robust k_c (eq. 9).
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from analysis import AdmittanceDisplay, ImpedanceDisplay
 from analysis.identify import (
@@ -18,6 +19,8 @@ from analysis.identify import (
 from analysis.sampled import critical_stiffness
 
 from tests.hbfd_fixtures import make_hbfd
+
+pytestmark = pytest.mark.numerics
 
 
 def _sample(box_intervals, count, seed):
