@@ -54,7 +54,18 @@ Cancelled = Callable[[], bool] | None
 
 @dataclass(frozen=True, eq=False)
 class IdentifyResult:
-    """The fit at the chosen order and the order-selection table (``orders`` may be ``None``)."""
+    """The fit at the chosen order and the order-selection table (``orders`` may be ``None``).
+
+    Attributes
+    ----------
+    fit : ChainFit
+        The fit at the chosen number of masses.
+    orders : OrderSelection or None
+        AIC, BIC and residual of every order ``1..max_masses``; ``None`` when no table was asked
+        for.
+    measurements : tuple of Measurement
+        The measurements fitted.
+    """
 
     fit: ChainFit
     orders: OrderSelection | None
@@ -63,13 +74,54 @@ class IdentifyResult:
 
 def load_measurements(paths: Sequence[str | os.PathLike], quantity: str = "actuator", boundary: str = "free",
                       sample_time: float | None = None, delay_samples: int = 0) -> list[Measurement]:
-    """:func:`analysis.identify.load_measurement` of each file (MeasurementError names file/row/column)."""
+    """:func:`analysis.identify.load_measurement` of each file (MeasurementError names file/row/column).
+
+    Parameters
+    ----------
+    paths : sequence of str or os.PathLike
+        The measurement files (frequency-response or time-series CSV files).
+    quantity : str, optional
+        What was measured: ``"actuator"``, ``"handle"`` or ``"gauge"``.
+    boundary : str, optional
+        How the handle was held, e.g. ``"free"``.
+    sample_time : float or None, optional
+        Controller sample period [s], or ``None`` for a continuous-time measurement.
+    delay_samples : int, optional
+        Computation delay in samples (sampled measurements only).
+
+    Returns
+    -------
+    list of Measurement
+        One measurement per file, in the order of ``paths``.
+
+    Raises
+    ------
+    MeasurementError
+        When a file cannot be read or its data are unusable (it names the file, row and column).
+    """
     return [load_measurement(p, quantity=quantity, boundary=boundary, sample_time=sample_time,
                              delay_samples=delay_samples) for p in paths]
 
 
 def parse_fixed(items: Sequence[str]) -> dict[str, float]:
-    """``["masses[0]=0.2", ...]`` -> ``{"masses[0]": 0.2}`` (ValueError names the bad item)."""
+    """``["masses[0]=0.2", ...]`` -> ``{"masses[0]": 0.2}`` (ValueError names the bad item).
+
+    Parameters
+    ----------
+    items : sequence of str
+        ``KEY=VALUE`` items (the CLI's ``--fix`` arguments), with parameter keys such as
+        ``"masses[0]"`` and values in SI units.
+
+    Returns
+    -------
+    dict of str to float
+        Parameter key -> fixed value.
+
+    Raises
+    ------
+    ValueError
+        When an item is not ``KEY=VALUE`` with a finite value > 0 (the message names it).
+    """
     out = {}
     for item in items:
         key, sep, value = item.partition("=")
@@ -107,6 +159,37 @@ def identify_chain(measurements: Sequence[Measurement], n_masses: int, fixed: Ma
 
     Fixed keys outside a smaller chain make that order an error row (``nan``), as in
     :func:`analysis.identify.order_selection`.
+
+    Parameters
+    ----------
+    measurements : sequence of Measurement
+        The measurements, fitted together.
+    n_masses : int
+        Number of masses of the chosen order.
+    fixed : mapping of str to float or None, optional
+        Known parameter values by key, e.g. ``{"masses[0]": 0.2}`` (:func:`parse_fixed`).
+    ground_dampings : sequence of int or None, optional
+        The masses with a damper to ground (default: the actuator, the last mass); indices
+        outside a smaller chain are dropped for that order.
+    max_masses : int or None, optional
+        Fit every order ``1..max_masses`` too, for the order table; ``None`` for no table.
+    progress : callable or None, optional
+        Called as ``progress(done, total)`` while it runs.
+    cancelled : callable or None, optional
+        Polled as ``cancelled() -> bool``; once true the computation stops and returns ``None``.
+    **fit_kwargs
+        Further keyword arguments of :func:`analysis.identify.fit_chain` (e.g. ``sample_time``,
+        ``starts``, ``seed``, ``intervals``).
+
+    Returns
+    -------
+    IdentifyResult or None
+        The fit and the order table, or ``None`` when cancelled.
+
+    Raises
+    ------
+    ValueError
+        When the chosen order cannot be fitted to the measurements (unusable input).
     """
     fixed = dict(fixed or {})
     orders = list(range(1, int(max_masses) + 1)) if max_masses else []
@@ -144,9 +227,22 @@ def _order_table(orders: list[int], rows: list[tuple[ChainFit | None, str | None
 
 
 def parameter_rows(fit: ChainFit) -> list[dict]:
-    """The parameter table as plain rows: key, value, std_error, low, high, fixed, identifiable,
-    method (how the interval was found: wald, profile, unbounded ..., fixed; numbers as floats)
-    plus ``text`` (the same numbers printed by :func:`format_number`)."""
+    """The parameter table as plain rows.
+
+    Each row holds key, value, std_error, low, high, fixed, identifiable, method (how the
+    interval was found: wald, profile, unbounded ..., fixed; numbers as floats) plus ``text``
+    (the same numbers printed by :func:`format_number`).
+
+    Parameters
+    ----------
+    fit : ChainFit
+        The fit.
+
+    Returns
+    -------
+    list of dict
+        One row per parameter of the fit, values in SI units.
+    """
     out = []
     for p in fit.parameters:
         text = {name: format_number(getattr(p, name)) for name in ("value", "std_error", "low", "high")}
@@ -163,8 +259,27 @@ def _data(m: Measurement) -> MeasurementData:
 
 def profile_with_fit(profile: Profile, fit: ChainFit, measurements: Sequence[Measurement] | None = None,
                      name: str | None = None) -> Profile:
-    """``profile`` with the fitted device (its band kept) and the identification section: the 95 %
-    intervals of the free parameters, the measurements embedded and the fit's warnings."""
+    """``profile`` with the fitted device (its band kept) and the identification section.
+
+    The section holds the 95 % intervals of the free parameters, the measurements embedded and
+    the fit's warnings.
+
+    Parameters
+    ----------
+    profile : Profile
+        The profile to update.
+    fit : ChainFit
+        The fit.
+    measurements : sequence of Measurement or None, optional
+        The measurements to embed; ``None`` embeds the fit's own.
+    name : str or None, optional
+        A new profile name; ``None`` keeps the profile's.
+
+    Returns
+    -------
+    Profile
+        The updated profile (a new record; ``profile`` is unchanged).
+    """
     free = {k: iv for k, iv, fixed in zip(fit.keys, fit.intervals.values(), fit.fixed) if not fixed}
     section = IdentificationSection(free, tuple(_data(m) for m in (measurements or fit.measurements)),
                                     tuple(fit.warnings))
@@ -173,13 +288,37 @@ def profile_with_fit(profile: Profile, fit: ChainFit, measurements: Sequence[Mea
 
 
 def section_measurements(section: IdentificationSection) -> list[Measurement]:
-    """The embedded measurements as :class:`~analysis.identify.Measurement` objects."""
+    """The embedded measurements as :class:`~analysis.identify.Measurement` objects.
+
+    Parameters
+    ----------
+    section : IdentificationSection
+        A profile's identification section.
+
+    Returns
+    -------
+    list of Measurement
+        Its measurements, in order.
+    """
     return [make_measurement(m.frequency, m.response, m.quantity, m.boundary, m.sample_time, m.delay_samples,
                              m.coherence, m.source) for m in section.measurements]
 
 
 def fit_curves(profile: Profile) -> list[tuple[Measurement, np.ndarray]]:
-    """Each embedded measurement with the profile device's response at its frequencies."""
+    """Each embedded measurement with the profile device's response at its frequencies.
+
+    Parameters
+    ----------
+    profile : Profile
+        The profile (its device and its identification section).
+
+    Returns
+    -------
+    list of (Measurement, numpy.ndarray)
+        Each measurement with the device's complex response at its frequencies, shape (F,)
+        (``nan`` where the device does not fit the measurement); empty without an
+        identification section.
+    """
     if profile.identification is None:
         return []
     dev = profile.device
@@ -202,6 +341,25 @@ class RobustDesigns:
     device in the box, ``coupling`` is the current (k_c or b_c) value checked.  ``unbounded``
     names the intervals the data do not bound (a fit's ``(0, inf)``): then there is no box to
     design over, neither design is set and ``holds`` is False.
+
+    Attributes
+    ----------
+    impedance : bool
+        ``True`` for the impedance display, ``False`` for the admittance display.
+    intervals : dict
+        The parameter box: parameter key -> ``(low, high)`` in SI units.
+    stiffness : RobustStiffness or None
+        Impedance: the robust largest k_c [N/m] at the current b_c (eq. 9) and its binding
+        device.
+    damping : RobustDamping or None
+        Admittance: the robust feasible b_c interval [N·s/m] for the current m_c (eq. 21) and its
+        binding devices.
+    coupling : float
+        The current coupling gain checked: k_c [N/m] or b_c [N·s/m].
+    holds : bool
+        Whether the current coupling is stable for every device in the box.
+    unbounded : tuple of str
+        The parameter keys whose intervals the data do not bound.
     """
 
     impedance: bool
@@ -213,7 +371,13 @@ class RobustDesigns:
     unbounded: tuple[str, ...] = ()
 
     def verdict(self) -> str:
-        """One line for the verdict: whether the current coupling holds for the whole box."""
+        """One line for the verdict: whether the current coupling holds for the whole box.
+
+        Returns
+        -------
+        str
+            The verdict with the robust limit, or why there is no robust design.
+        """
         if self.unbounded:
             return (f"no robust design: the measurements do not bound {', '.join(self.unbounded)} "
                     f"(type intervals for them, or add the measurement the fit suggests)")
@@ -234,7 +398,22 @@ class RobustDesigns:
 class RobustRequest:
     """What the robust design depends on: the display, the device, the identification intervals
     (not the embedded measurements), the design point (impedance: ``(b_c,)``; admittance:
-    ``(m_c, k_p, k_d)``) and the coupling gain checked against the box (k_c or b_c)."""
+    ``(m_c, k_p, k_d)``) and the coupling gain checked against the box (k_c or b_c).
+
+    Attributes
+    ----------
+    display : str
+        The display type: ``"impedance"`` or ``"admittance"``.
+    device : Device
+        The profile's device chain.
+    intervals : tuple of (str, (float, float))
+        The identification intervals: parameter key and ``(low, high)`` in SI units; empty
+        without an identification section.
+    design : tuple of float
+        The design point: ``(b_c [N·s/m],)`` or ``(m_c [kg], k_p [N/m], k_d [N·s/m])``.
+    coupling : float
+        The coupling gain checked against the box: k_c [N/m] or b_c [N·s/m].
+    """
 
     display: str
     device: Device
@@ -244,6 +423,18 @@ class RobustRequest:
 
     @classmethod
     def of(cls, profile: Profile) -> RobustRequest:
+        """The request of ``profile``'s display, device, intervals and coupling.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+
+        Returns
+        -------
+        RobustRequest
+            The request.
+        """
         kind = display_kind(profile)
         sec = profile.identification
         intervals = () if sec is None else tuple((k, (float(lo), float(hi))) for k, (lo, hi) in sec.intervals.items())
@@ -255,8 +446,24 @@ class RobustRequest:
 
 def robust_designs(request: RobustRequest | Profile, *, seed: int = 0, progress: Progress = None,
                    cancelled: Cancelled = None) -> RobustDesigns | None:
-    """The robust design of the display over the identification intervals; ``None`` without
-    intervals or when cancelled before the search."""
+    """The robust design of the display over the identification intervals.
+
+    Parameters
+    ----------
+    request : RobustRequest or Profile
+        The request, or a profile.
+    seed : int, optional
+        Seed of the search over the box.
+    progress : callable or None, optional
+        Called as ``progress(done, total)`` while it runs.
+    cancelled : callable or None, optional
+        Polled as ``cancelled() -> bool``; once true the computation stops and returns ``None``.
+
+    Returns
+    -------
+    RobustDesigns or None
+        The robust design, or ``None`` without intervals or when cancelled before the search.
+    """
     req = RobustRequest.of(request) if isinstance(request, Profile) else request
     if not req.intervals or (cancelled and cancelled()):
         return None
@@ -281,7 +488,28 @@ def robust_designs(request: RobustRequest | Profile, *, seed: int = 0, progress:
 class BodeData:
     """Measured and model responses of several measurements, joined with a ``nan`` between them
     (one curve each for plotting): frequency (rad/s), magnitudes, phases (degrees, unwrapped per
-    measurement), the residual ``|ln(model/measured)|`` and the coherence (``nan`` where none)."""
+    measurement), the residual ``|ln(model/measured)|`` and the coherence (``nan`` where none).
+
+    Every array has the same shape (N,): the measurements' frequency points and one ``nan`` between
+    two measurements.
+
+    Attributes
+    ----------
+    w : numpy.ndarray
+        Angular frequencies [rad/s].
+    measured_mag : numpy.ndarray
+        Measured magnitude (m/N for ``actuator``/``handle``, N/N for ``gauge``).
+    model_mag : numpy.ndarray
+        The model's magnitude, in the same unit.
+    measured_phase : numpy.ndarray
+        Measured phase [deg], unwrapped per measurement.
+    model_phase : numpy.ndarray
+        The model's phase [deg], on the measured branch.
+    residual : numpy.ndarray
+        ``|ln(model/measured)|``.
+    coherence : numpy.ndarray
+        Magnitude-squared coherence in [0, 1] (``nan`` where none).
+    """
 
     w: np.ndarray
     measured_mag: np.ndarray
@@ -297,7 +525,18 @@ class BodeData:
 
 
 def bode_data(pairs: Sequence[tuple[Measurement, np.ndarray]]) -> BodeData:
-    """The :class:`BodeData` of ``(measurement, model response)`` pairs (see :func:`fit_curves`)."""
+    """The :class:`BodeData` of ``(measurement, model response)`` pairs (see :func:`fit_curves`).
+
+    Parameters
+    ----------
+    pairs : sequence of (Measurement, numpy.ndarray)
+        Each measurement with the model's complex response at its frequencies, shape (F,).
+
+    Returns
+    -------
+    BodeData
+        The curves joined with a ``nan`` between measurements (empty arrays for no pair).
+    """
     parts: list[list[np.ndarray]] = [[] for _ in range(7)]
     for i, (m, model) in enumerate(pairs):
         h, g = m.response, np.asarray(model, complex)

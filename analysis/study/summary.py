@@ -74,8 +74,22 @@ def _profile(profile: Profile) -> dict[str, Any]:
 
 
 def summarize(profile: Profile) -> dict[str, Any]:
-    """Verdicts (with the stability reserve and its binding frequency), impedance range and
-    conservative designs for both displays."""
+    """Verdicts, impedance range and conservative designs for both displays.
+
+    The verdicts come with the stability reserve and its binding frequency.
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+
+    Returns
+    -------
+    dict of str to Any
+        ``summary_version``, ``profile`` (the device's parameters) and, for ``impedance`` and
+        ``admittance``, the coupling, the headline values in SI units and the designs (README,
+        "JSON output").
+    """
     hi = headline(profile, IMPEDANCE)
     ha = headline(profile, ADMITTANCE)
     return {
@@ -120,7 +134,23 @@ def _verdict_lines(d: dict[str, Any], kind: DisplayKind) -> list[str]:
 
 
 def format_summary(d: dict[str, Any]) -> str:
-    """Readable text version of :func:`summarize`'s dictionary."""
+    """Readable text version of :func:`summarize`'s dictionary.
+
+    Parameters
+    ----------
+    d : dict of str to Any
+        A dictionary as :func:`summarize` returns it.
+
+    Returns
+    -------
+    str
+        The text ``zwidth analyze`` prints, lines separated by ``"\n"``.
+
+    Raises
+    ------
+    KeyError
+        When ``d`` lacks a key of :func:`summarize`'s shape.
+    """
     p, i, a = d["profile"], d["impedance"], d["admittance"]
     g = i["design"]
     fd, mm = a["design"]["feasible_damping"], a["design"]["min_mass"]
@@ -159,6 +189,21 @@ def design_summary(profile: Profile, display: str | None = None, points: int = 2
     k_c over b_c from 1 to 1e4 N s/m.  Admittance display: the feasible b_c interval at the
     profile's m_c, the smallest m_c, and the feasible (m_c, b_c) region from the smallest
     m_c to 100 times it.  Infeasible points are ``None``; unbounded ones ``inf``.
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+    display : str or None, optional
+        ``"impedance"`` or ``"admittance"``; ``None`` takes the profile's display.
+    points : int, optional
+        Number of points of the design chart.
+
+    Returns
+    -------
+    dict of str to Any
+        ``summary_version``, ``display``, the designs and ``chart`` (lists of the chart's grid
+        and values in SI units; ``None`` for the admittance display without a smallest m_c).
     """
     kind = display_kind(display or profile)
     found = designs(profile, kind)
@@ -181,7 +226,23 @@ def design_summary(profile: Profile, display: str | None = None, points: int = 2
 
 
 def format_design(d: dict[str, Any]) -> str:
-    """Readable text version of :func:`design_summary`."""
+    """Readable text version of :func:`design_summary`.
+
+    Parameters
+    ----------
+    d : dict of str to Any
+        A dictionary as :func:`design_summary` returns it.
+
+    Returns
+    -------
+    str
+        The text ``zwidth design`` prints, with the design chart as a table.
+
+    Raises
+    ------
+    KeyError
+        When ``d`` lacks a key of :func:`design_summary`'s shape.
+    """
     if display_kind(d["display"]).is_impedance:
         g = d["design"]
         lines = [
