@@ -41,6 +41,27 @@ def continued_fraction(node: Sequence, elem: Sequence, R, work: np.ndarray | Non
     numpy's complex division may still differ in the last bit).  ``node`` has ``n`` entries,
     ``elem`` ``n - 1``; ``R`` is ``R_{n-1}`` (an array is overwritten).  ``work``, an array of
     ``R``'s shape and dtype, is used as the sweep's one temporary instead of a new one.
+
+    Parameters
+    ----------
+    node : sequence of complex or of numpy.ndarray
+        The ``n`` node impedances ``m_i s + g_i`` [N s/m], each a Python complex or an array of
+        shape (N,) (one value per frequency).
+    elem : sequence of complex or of numpy.ndarray
+        The ``n - 1`` element impedances ``z_i = b_i + k_i/s`` [N s/m], of the same kind as
+        ``node``.
+    R : complex or numpy.ndarray
+        ``R_{n-1}``, the impedance at the actuator node [N s/m]; a complex array of shape (N,)
+        is overwritten with the result.
+    work : numpy.ndarray or None, optional
+        A scratch array of ``R``'s shape and dtype used as the sweep's temporary; ``None``
+        allocates one.  Ignored when ``R`` is a Python number.
+
+    Returns
+    -------
+    complex or numpy.ndarray
+        ``R_0``, the driving-point impedance at the handle [N s/m]: a Python complex, or the
+        array ``R`` itself (shape (N,)).
     """
     if isinstance(R, np.ndarray):
         d = np.empty_like(R) if work is None else work
@@ -64,6 +85,23 @@ def node_element_impedances(device: Device, s: np.ndarray,
     On the unit circle the Tustin image is purely imaginary, ``s = j W``; then the arrays
     are filled part by part (see :func:`frozen_impedances`).  ``termination`` is added to the
     actuator node.
+
+    Parameters
+    ----------
+    device : Device
+        The chain of ``n`` masses.
+    s : numpy.ndarray
+        Complex frequencies [rad/s], shape (N,).
+    termination : numpy.ndarray or None, optional
+        An impedance from the actuator mass to ground [N s/m], shape (N,) or scalar, added to
+        the last node; ``None`` adds nothing.
+
+    Returns
+    -------
+    node : numpy.ndarray
+        Node impedances ``m_i s + g_i`` [N s/m], complex, shape (n, N), writable.
+    elem : numpy.ndarray
+        Element impedances ``b_i + k_i/s`` [N s/m], complex, shape (n - 1, N), writable.
     """
     if not np.any(s.real):
         node, elem = _impedances_jw(device, s.imag)
@@ -98,7 +136,22 @@ def _impedances_jw(device: Device, W: np.ndarray) -> tuple[np.ndarray, np.ndarra
 
 
 def chain_impedances(device: Device, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Node impedances ``m_i s + g_i`` and element impedances ``b_i + k_i/s`` (read-only)."""
+    """Node impedances ``m_i s + g_i`` and element impedances ``b_i + k_i/s`` (read-only).
+
+    Parameters
+    ----------
+    device : Device
+        The chain of ``n`` masses.
+    s : array_like
+        Complex frequencies [rad/s], shape (N,).
+
+    Returns
+    -------
+    node : numpy.ndarray
+        Node impedances [N s/m], complex, shape (n, N), read-only.
+    elem : numpy.ndarray
+        Element impedances [N s/m], complex, shape (n - 1, N), read-only.
+    """
     node, elem = node_element_impedances(device, np.asarray(s, dtype=complex))
     node.setflags(write=False)
     elem.setflags(write=False)
@@ -106,7 +159,23 @@ def chain_impedances(device: Device, s: np.ndarray) -> tuple[np.ndarray, np.ndar
 
 
 def frozen_impedances(device: Device, W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`chain_impedances` at ``s = j W`` (W real), read-only."""
+    """:func:`chain_impedances` at ``s = j W`` (W real), read-only.
+
+    Parameters
+    ----------
+    device : Device
+        The chain of ``n`` masses.
+    W : array_like
+        Real frequencies [rad/s] (for a sampled display, the Tustin image of the angular
+        frequency), shape (N,).
+
+    Returns
+    -------
+    node : numpy.ndarray
+        Node impedances ``g_i + j m_i W`` [N s/m], complex, shape (n, N), read-only.
+    elem : numpy.ndarray
+        Element impedances ``b_i - j k_i/W`` [N s/m], complex, shape (n - 1, N), read-only.
+    """
     node, elem = _impedances_jw(device, np.asarray(W, dtype=float))
     node.setflags(write=False)
     elem.setflags(write=False)
@@ -121,6 +190,25 @@ def handle_impedance(device: Device, s: np.ndarray, termination: np.ndarray | No
     ``impedances`` may pass the (node, element) arrays of :func:`chain_impedances` for the
     same ``s`` (they depend on the device only), so that a coupling change does not rebuild
     them; they are not modified.
+
+    Parameters
+    ----------
+    device : Device
+        The chain.
+    s : array_like
+        Complex frequencies [rad/s], shape (N,).
+    termination : numpy.ndarray or None, optional
+        An impedance from the actuator mass to ground [N s/m], shape (N,) or scalar; ``None``
+        leaves the actuator end free.
+    impedances : tuple of numpy.ndarray or None, optional
+        The ``(node, elem)`` arrays of :func:`chain_impedances` at the same ``s``; ``None``
+        builds them.
+
+    Returns
+    -------
+    numpy.ndarray
+        The handle impedance ``R_0 = 1/y11`` [N s/m], complex, shape (N,); inf or nan at an
+        exact pole.
     """
     s = np.asarray(s, dtype=complex)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -131,7 +219,23 @@ def handle_impedance(device: Device, s: np.ndarray, termination: np.ndarray | No
 
 def terminated_handle_impedance(device: Device, impedances: tuple[np.ndarray, np.ndarray],
                                 termination: np.ndarray) -> np.ndarray:
-    """:func:`handle_impedance` from prebuilt impedances, with a termination."""
+    """:func:`handle_impedance` from prebuilt impedances, with a termination.
+
+    Parameters
+    ----------
+    device : Device
+        The chain (its impedances are ``impedances``).
+    impedances : tuple of numpy.ndarray
+        The ``(node, elem)`` arrays of :func:`chain_impedances`, shapes (n, N) and (n - 1, N);
+        not modified.
+    termination : numpy.ndarray
+        The impedance from the actuator mass to ground [N s/m], shape (N,) or scalar.
+
+    Returns
+    -------
+    numpy.ndarray
+        The handle impedance [N s/m], complex, shape (N,).
+    """
     node, elem = impedances
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         return continued_fraction(node, elem, node[-1] + termination)
@@ -140,7 +244,20 @@ def terminated_handle_impedance(device: Device, impedances: tuple[np.ndarray, np
 def handle_impedance_at(device: Device, W: float) -> complex | None:
     """:func:`handle_impedance` at the single frequency ``s = j W``, in Python complex arithmetic
     (the same operations, without per-mass array overhead).  ``None`` on an exact pole
-    (division by zero) or overflow; :func:`handle_impedance` then gives numpy's inf/nan."""
+    (division by zero) or overflow; :func:`handle_impedance` then gives numpy's inf/nan.
+
+    Parameters
+    ----------
+    device : Device
+        The chain.
+    W : float
+        The real frequency [rad/s] of ``s = j W``.
+
+    Returns
+    -------
+    complex or None
+        The handle impedance [N s/m], or ``None`` on an exact pole or overflow.
+    """
     m, g = device.masses.tolist(), device.ground_dampings.tolist()
     b, k = device.dampings.tolist(), device.stiffnesses.tolist()
     inv_w = 1.0 / W
@@ -154,5 +271,18 @@ def handle_impedance_at(device: Device, W: float) -> complex | None:
 
 def handle_admittance(device: Device, s) -> np.ndarray:
     """``P(s) = y11(s)`` of a chain: handle velocity per unit handle force (eq. 26; the device
-    of Eom, Suh & Yi, eq. 7, read at the handle)."""
+    of Eom, Suh & Yi, eq. 7, read at the handle).
+
+    Parameters
+    ----------
+    device : Device
+        The chain.
+    s : array_like
+        Complex frequencies [rad/s], shape (N,).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``y11(s)`` [m/(N s)], complex, shape (N,).
+    """
     return 1.0 / handle_impedance(device, np.asarray(s, dtype=complex))

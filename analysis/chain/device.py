@@ -30,13 +30,44 @@ def damping_from_ratio(stiffness: float, mass_a: float, mass_b: float, ratio: fl
     """Element damping from a damping ratio, eq. (28) with the reduced mass.
 
     ``b = 2 * ratio * sqrt(k * mu)`` with ``mu = m_a m_b / (m_a + m_b)``.
+
+    Parameters
+    ----------
+    stiffness : float
+        Element stiffness ``k`` [N/m].
+    mass_a, mass_b : float
+        The two masses the element joins [kg].
+    ratio : float
+        Damping ratio (dimensionless).
+
+    Returns
+    -------
+    float
+        Element damping ``b`` [N s/m].
     """
     mu = mass_a * mass_b / (mass_a + mass_b)
     return 2.0 * ratio * math.sqrt(stiffness * mu)
 
 
 def ratio_from_damping(stiffness: float, mass_a: float, mass_b: float, damping: float) -> float:
-    """Inverse of :func:`damping_from_ratio`."""
+    """Inverse of :func:`damping_from_ratio`.
+
+    ``ratio = b / (2 sqrt(k mu))`` with ``mu = m_a m_b / (m_a + m_b)`` (eq. 28).
+
+    Parameters
+    ----------
+    stiffness : float
+        Element stiffness ``k`` [N/m].
+    mass_a, mass_b : float
+        The two masses the element joins [kg].
+    damping : float
+        Element damping ``b`` [N s/m].
+
+    Returns
+    -------
+    float
+        Damping ratio (dimensionless).
+    """
     mu = mass_a * mass_b / (mass_a + mass_b)
     return damping / (2.0 * math.sqrt(stiffness * mu))
 
@@ -105,7 +136,14 @@ class Device:
 
     # -- identity -----------------------------------------------------------------
     def key(self) -> tuple:
-        """A hashable key of every parameter (used for caching)."""
+        """A hashable key of every parameter (used for caching).
+
+        Returns
+        -------
+        tuple
+            The bytes of the four arrays, then ``sensor_element``, ``sample_time`` and
+            ``band_min``; equal keys mean equal devices.
+        """
         return (
             self.masses.tobytes(),
             self.stiffnesses.tobytes(),
@@ -154,7 +192,23 @@ class Device:
         return self.dampings / (2.0 * np.sqrt(self.stiffnesses * mu))
 
     def replace(self, **changes) -> Device:
-        """A copy with some parameters changed (validated again)."""
+        """A copy with some parameters changed (validated again).
+
+        Parameters
+        ----------
+        **changes
+            New values of constructor parameters, by name (``masses``, ``sample_time``, ...).
+
+        Returns
+        -------
+        Device
+            The new device.
+
+        Raises
+        ------
+        ValidationError
+            When a changed value is outside its physical range or the shapes disagree.
+        """
         data = dict(
             masses=self.masses,
             stiffnesses=self.stiffnesses,
@@ -176,7 +230,32 @@ class Device:
         ground_dampings=None,
         **kwargs,
     ) -> Device:
-        """Build a chain whose element dampings follow eq. (28) from damping ratios."""
+        """Build a chain whose element dampings follow eq. (28) from damping ratios.
+
+        Parameters
+        ----------
+        masses : array_like
+            ``n`` masses [kg], handle first.
+        stiffnesses : array_like
+            ``n - 1`` element stiffnesses [N/m].
+        ratios : array_like
+            Element damping ratios (dimensionless): one per element, or one for all.
+        ground_dampings : array_like or None, optional
+            ``n`` dampers to ground [N s/m]; ``None`` for none.
+        **kwargs
+            Further :class:`Device` parameters (``sensor_element``, ``sample_time``,
+            ``band_min``).
+
+        Returns
+        -------
+        Device
+            The chain with dampings ``b_i = 2 r_i sqrt(k_i mu_i)``.
+
+        Raises
+        ------
+        ValidationError
+            When a value is outside its physical range.
+        """
         m = np.asarray(masses, dtype=float).reshape(-1)
         k = np.asarray(stiffnesses, dtype=float).reshape(-1)
         r = np.broadcast_to(np.asarray(ratios, dtype=float), k.shape)
@@ -186,7 +265,14 @@ class Device:
 
     # -- matrices (eq. 25) ---------------------------------------------------------
     def matrices(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Mass, damping and stiffness matrices of eq. (25)."""
+        """Mass, damping and stiffness matrices of eq. (25).
+
+        Returns
+        -------
+        M, B, K : numpy.ndarray
+            Mass [kg], damping [N s/m] and stiffness [N/m] matrices, each of shape (n, n);
+            ``B`` includes the dampers to ground.
+        """
         n = self.n
         M = np.diag(self.masses)
         B = np.diag(self.ground_dampings.copy())
@@ -205,6 +291,19 @@ class Device:
         ``extra_stiffness`` adds springs to ground at given nodes; ``clamp`` removes nodes
         (held fixed).  Rigid-body (zero) modes are dropped.  Used to place frequency grid
         points on resonances and antiresonances.
+
+        Parameters
+        ----------
+        extra_stiffness : dict of int to float or None, optional
+            Springs to ground [N/m] by node index.
+        clamp : tuple of int, optional
+            Indices of the nodes held fixed.
+
+        Returns
+        -------
+        numpy.ndarray
+            The nonzero undamped natural frequencies [rad/s], ascending, shape (m,) with
+            ``m <= n``; empty when every node is clamped.
         """
         M, _, K = self.matrices()
         K = K.copy()

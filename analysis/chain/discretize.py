@@ -41,6 +41,23 @@ def discretize_zoh(A: np.ndarray, B: np.ndarray, h) -> tuple[np.ndarray, np.ndar
 
     ``A`` (..., N, N) and ``B`` (..., N, m) may carry leading batch axes; ``h`` is a step length
     or an array of them (a further leading batch axis, broadcast with those of ``A`` and ``B``).
+
+    Parameters
+    ----------
+    A : numpy.ndarray
+        Continuous state matrix [1/s], shape (..., N, N).
+    B : numpy.ndarray
+        Continuous input matrix, shape (..., N, m).
+    h : float or array_like
+        Step length(s) [s]: a scalar or an array broadcast with the batch axes of ``A`` and
+        ``B``.
+
+    Returns
+    -------
+    Phi : numpy.ndarray
+        ``exp(A h)``, shape (..., N, N) (the broadcast batch shape).
+    Gamma : numpy.ndarray
+        ``integral_0^h exp(A t) dt B``, shape (..., N, m).
     """
     N, m = A.shape[-1], B.shape[-1]
     hb = np.asarray(h, dtype=float)[..., None, None]
@@ -53,7 +70,25 @@ def discretize_zoh(A: np.ndarray, B: np.ndarray, h) -> tuple[np.ndarray, np.ndar
 
 
 def check_frequencies(w, sample_time: float) -> np.ndarray:
-    """Validate a frequency vector: finite, > 0 and below Nyquist (rad/s)."""
+    """Validate a frequency vector: finite, > 0 and below Nyquist (rad/s).
+
+    Parameters
+    ----------
+    w : array_like
+        Angular frequencies [rad/s], any shape.
+    sample_time : float
+        Sample period ``T`` [s]; Nyquist is ``pi/T``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``w`` as a float array, same shape.
+
+    Raises
+    ------
+    ValidationError
+        When a frequency is not finite, not > 0 or not below Nyquist.
+    """
     w = np.asarray(w, dtype=float)
     nyq = np.pi / sample_time
     # min/max propagate NaN, and a comparison with NaN is False: one test covers all cases
@@ -66,30 +101,104 @@ def check_frequencies(w, sample_time: float) -> np.ndarray:
 
 
 def theta_of(w: np.ndarray, sample_time: float) -> np.ndarray:
-    """Half the sampled phase, ``theta = w T / 2``."""
+    """Half the sampled phase, ``theta = w T / 2``.
+
+    Parameters
+    ----------
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (N,).
+    sample_time : float
+        Sample period ``T`` [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        ``theta`` [rad], shape (N,).
+    """
     return 0.5 * np.asarray(w, dtype=float) * sample_time
 
 
 def tustin_image(w: np.ndarray, sample_time: float) -> np.ndarray:
-    """Tustin image of ``z = exp(j w T)``: ``s = j (2/T) tan(w T / 2)`` (eq. 2)."""
+    """Tustin image of ``z = exp(j w T)``: ``s = j (2/T) tan(w T / 2)`` (eq. 2).
+
+    Parameters
+    ----------
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (N,).
+    sample_time : float
+        Sample period ``T`` [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The purely imaginary ``s`` [rad/s], complex, shape (N,).
+    """
     return 1j * (2.0 / sample_time) * np.tan(theta_of(w, sample_time))
 
 
 def hold_factor(w: np.ndarray, sample_time: float) -> np.ndarray:
-    """Half-sample model of the zero-order hold, ``(z+1)/(2z) = cos(theta) e^{-j theta}``."""
+    """Half-sample model of the zero-order hold, ``(z+1)/(2z) = cos(theta) e^{-j theta}``.
+
+    Parameters
+    ----------
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (N,).
+    sample_time : float
+        Sample period ``T`` [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        The hold factor (dimensionless), complex, shape (N,).
+    """
     th = theta_of(w, sample_time)
     return np.cos(th) * np.exp(-1j * th)
 
 
 def spring_damper(w: np.ndarray, sample_time: float, k: float, b: float) -> np.ndarray:
-    """``b + k T z/(z-1)`` on the unit circle (eq. 4 for the coupling, eq. 30 for the PD loop)."""
+    """``b + k T z/(z-1)`` on the unit circle (eq. 4 for the coupling, eq. 30 for the PD loop).
+
+    Parameters
+    ----------
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (N,).
+    sample_time : float
+        Sample period ``T`` [s].
+    k : float
+        Stiffness [N/m].
+    b : float
+        Damping [N s/m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The discrete spring-damper impedance [N s/m], complex, shape (N,).
+    """
     th = theta_of(w, sample_time)
     T = sample_time
     return (b + 0.5 * k * T) - 0.5j * k * T / np.tan(th)
 
 
 def held_spring_damper(w: np.ndarray, sample_time: float, k: float, b: float) -> np.ndarray:
-    """Hold factor times spring-damper, in the cancellation-free closed form (see module doc)."""
+    """Hold factor times spring-damper, in the cancellation-free closed form (see module doc).
+
+    Parameters
+    ----------
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (N,).
+    sample_time : float
+        Sample period ``T`` [s].
+    k : float
+        Stiffness [N/m].
+    b : float
+        Damping [N s/m].
+
+    Returns
+    -------
+    numpy.ndarray
+        ``b cos^2(theta) - j cos(theta) (b sin(theta) + k T / (2 sin(theta)))`` [N s/m],
+        complex, shape (N,).
+    """
     th = theta_of(w, sample_time)
     c, s = np.cos(th), np.sin(th)
     return b * c * c - 1j * c * (b * s + 0.5 * k * sample_time / s)
@@ -100,6 +209,22 @@ def mass_damper_admittance(w: np.ndarray, sample_time: float, mc: float, bc: flo
 
     with ``s = (z-1)/(Tz)``, i.e. ``1/(m_c s) = (T/(2 m_c)) (1 - j cot(theta))``.
     ``bc = inf`` gives a pure mass coupling.
+
+    Parameters
+    ----------
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (N,).
+    sample_time : float
+        Sample period ``T`` [s].
+    mc : float
+        Coupling mass ``m_c`` [kg].
+    bc : float
+        Coupling damping ``b_c`` [N s/m]; ``inf`` for a pure mass.
+
+    Returns
+    -------
+    numpy.ndarray
+        The coupling admittance [m/(N s)], complex, shape (N,).
     """
     th = theta_of(w, sample_time)
     a = 0.5 * sample_time / mc

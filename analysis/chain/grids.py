@@ -26,17 +26,56 @@ _OFFSETS = np.concatenate([-_OFFSETS[::-1], _OFFSETS])
 
 
 def warp(omega_continuous: np.ndarray, sample_time: float) -> np.ndarray:
-    """Discrete frequency whose Tustin image is ``j * omega_continuous``."""
+    """Discrete frequency whose Tustin image is ``j * omega_continuous``.
+
+    ``w = (2/T) arctan(W T / 2)``, the inverse of :func:`analysis.chain.discretize.tustin_image`.
+
+    Parameters
+    ----------
+    omega_continuous : array_like
+        Continuous-time angular frequencies ``W`` [rad/s], any shape.
+    sample_time : float
+        Sample period ``T`` [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        Discrete angular frequencies [rad/s] in ``[0, pi/T)``, same shape.
+    """
     return (2.0 / sample_time) * np.arctan(0.5 * np.asarray(omega_continuous, float) * sample_time)
 
 
 def band_edges(device: Device) -> tuple[float, float]:
-    """``[band_min, Nyquist)``: the upper edge is the largest double below Nyquist used."""
+    """``[band_min, Nyquist)``: the upper edge is the largest double below Nyquist used.
+
+    Parameters
+    ----------
+    device : Device
+        The device (its ``band_min`` and sample period).
+
+    Returns
+    -------
+    lo, hi : float
+        The band's edges [rad/s]: ``band_min`` and ``pi/T (1 - 1e-9)``.
+    """
     return device.band_min, device.nyquist * (1.0 - 1e-9)
 
 
 def log_grid(device: Device, points: int) -> np.ndarray:
-    """Plain logarithmic grid over the analysis band."""
+    """Plain logarithmic grid over the analysis band.
+
+    Parameters
+    ----------
+    device : Device
+        The device whose band (:func:`band_edges`) is covered.
+    points : int
+        Number of grid points.
+
+    Returns
+    -------
+    numpy.ndarray
+        Angular frequencies [rad/s], geometrically spaced, shape (points,).
+    """
     lo, hi = band_edges(device)
     return np.geomspace(lo, hi, points)
 
@@ -47,6 +86,19 @@ def device_modes(device: Device, actuator_stiffness: float = 0.0) -> np.ndarray:
     Free chain (poles of y), handle clamped and actuator clamped (zeros of the driving-point
     admittances), and with ``actuator_stiffness`` to ground at the actuator (the position
     loop of an admittance display), with and without the handle clamped.
+
+    Parameters
+    ----------
+    device : Device
+        The chain.
+    actuator_stiffness : float, optional
+        Stiffness to ground at the actuator [N/m]; 0 leaves those mode sets out.
+
+    Returns
+    -------
+    numpy.ndarray
+        The sorted, unique undamped modes [rad/s] of every boundary condition, shape (M,);
+        empty for a single mass.
     """
     n = device.n
     if n < 2:
@@ -68,6 +120,22 @@ def resonance_grid(device: Device, modes: np.ndarray, base_points: int = 300, ma
     At most ``max_modes`` modes are clustered (the lowest ones; higher modes of long chains
     are covered by the base grid and refinement).  Roughly ``base_points + 49 * modes``
     points, all inside the band, sorted and unique.
+
+    Parameters
+    ----------
+    device : Device
+        The device (band and sample period).
+    modes : array_like
+        Continuous-time modes [rad/s], ascending (for example :func:`device_modes`).
+    base_points : int, optional
+        Points of the underlying log grid.
+    max_modes : int, optional
+        Most modes that get a cluster.
+
+    Returns
+    -------
+    numpy.ndarray
+        Angular frequencies [rad/s], sorted and unique, shape (N,).
     """
     lo, hi = band_edges(device)
     parts = [np.geomspace(lo, hi, base_points)]
@@ -120,6 +188,33 @@ def refine_minima(
     interior points in every bracket at once and shrinks the bracket to the two
     neighbours of the best point, until the relative bracket width is below ``rtol``.
     Returns the refined frequencies and values (one per candidate), best first.
+
+    Parameters
+    ----------
+    func : callable
+        Vectorized map from angular frequencies [rad/s] (shape (M,)) to real values
+        (shape (M,)); NaN reads as +inf.
+    w : numpy.ndarray
+        Sorted angular frequencies [rad/s] of the samples, shape (N,).
+    values : numpy.ndarray
+        ``func`` at ``w``, shape (N,).
+    lo, hi : float
+        Limits of the brackets [rad/s] (the band's edges).
+    candidates : int, optional
+        Number of lowest local minima refined.
+    rtol : float, optional
+        Relative bracket width at which a minimum counts as converged.
+    points : int, optional
+        Interior points evaluated per bracket and pass.
+    max_passes : int, optional
+        Most passes.
+
+    Returns
+    -------
+    w_min : numpy.ndarray
+        Refined frequencies [rad/s], shape (c,) with ``c <= candidates``, best first.
+    v_min : numpy.ndarray
+        ``func`` at ``w_min`` (NaN replaced by inf), shape (c,).
     """
     w = np.asarray(w, float)
     v = np.asarray(values, float)

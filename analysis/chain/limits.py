@@ -66,6 +66,20 @@ class Limit:
     ``positive``: the value must be > 0 (a mass, a period) even where ``lo`` is 0.
     :attr:`text` is the allowed range shown in every refusal, e.g.
     ``"> 0 and finite, within the physical range [1e-06, 1000] (kg)"``.
+
+    Calling a limit, ``LIMIT(name, value, index=None)``, validates one value and returns it as
+    a float (a :class:`~analysis.errors.ValidationError` when it is outside).
+
+    Parameters
+    ----------
+    lo : float
+        Lower edge of the range, in ``unit``.
+    hi : float
+        Upper edge of the range, in ``unit`` (may be ``inf``).
+    unit : str
+        The unit shown in messages, e.g. ``"kg"``; ``""`` for a dimensionless value.
+    positive : bool, optional
+        Whether the value must be > 0 even where ``lo`` is 0 (default True).
     """
 
     lo: float
@@ -89,7 +103,18 @@ class Limit:
         return self.rule(name, value, index)
 
     def contains(self, value: float) -> bool:
-        """True if ``value`` passes the rule."""
+        """True if ``value`` passes the rule.
+
+        Parameters
+        ----------
+        value : float
+            The value, in the limit's ``unit``.
+
+        Returns
+        -------
+        bool
+            Whether ``value`` lies in the physical range.
+        """
         return self.rule.accepts(float(value))
 
 
@@ -142,7 +167,29 @@ MAX_CHART_POINTS = 10_000
 
 def check_count(name: str, count: int, limit: int, what: str = "") -> int:
     """``count`` if it is at most ``limit``, else a :class:`~analysis.errors.ValidationError`
-    saying ``"at most <limit> <name> (what)"`` -- call before allocating ``count`` of anything."""
+    saying ``"at most <limit> <name> (what)"`` -- call before allocating ``count`` of anything.
+
+    Parameters
+    ----------
+    name : str
+        What is counted, as named in the message (e.g. ``"simulation steps"``).
+    count : int
+        The size asked for.
+    limit : int
+        The largest size allowed.
+    what : str, optional
+        How ``count`` follows from the input, added to the message in parentheses.
+
+    Returns
+    -------
+    int
+        ``count``, unchanged.
+
+    Raises
+    ------
+    ValidationError
+        When ``count > limit``.
+    """
     if count > limit:
         raise ValidationError(name, f"at most {limit:g} {name}" + (f" ({what})" if what else ""), count)
     return count
@@ -153,6 +200,27 @@ def check_simulation_size(duration: float, sample_time: float, substeps: int = 1
 
     Steps are ``duration / T × substeps`` (at most :data:`MAX_SIMULATION_STEPS`); the trace holds
     ``(2 n + 10)`` numbers per sample (at most :data:`MAX_SIMULATION_VALUES`).
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time [s].
+    sample_time : float
+        Sample period ``T`` [s].
+    substeps : int, optional
+        Integration steps per sample.
+    masses : int, optional
+        Number of masses ``n`` of the chain.
+
+    Returns
+    -------
+    int
+        The number of samples, ``round(duration / T) + 1``.
+
+    Raises
+    ------
+    ValidationError
+        When the steps or the stored values exceed their limits.
     """
     samples = int(round(duration / sample_time)) + 1
     check_count("simulation steps", samples * substeps, MAX_SIMULATION_STEPS,

@@ -42,17 +42,24 @@ __all__ = ["ChainResponse", "chain_response"]
 class ChainResponse:
     """Continuous responses of the chain at the complex frequencies ``s`` (shape N).
 
-    Attributes (all arrays of shape ``(N,)`` unless stated)
-    ----------------------------------------------------------
-    y11, y22, y12:
-        Continuous two-port admittance with the port convention of eq. (26):
-        ``y11 = v_h/F_h``, ``y22 = (-v_d)/F_d``, ``y12 = y21 = v_h/F_d``.
-    re_y11, re_y22:
-        Their real parts as dissipated powers (non-negative, cancellation-free).
-    x:
-        ``Re y11 Re y22 - (Re y12)^2 + j (Re y11 Im y22 - Re y12 Im y12)``, accurate.
-    sensor_from_handle, sensor_from_actuator:
-        Gauge force per unit ``F_h`` and per unit force *on* the actuator mass (N x 1).
+    All arrays have shape ``(N,)``.
+
+    Attributes
+    ----------
+    s : numpy.ndarray
+        The complex frequencies [rad/s], complex.
+    y11, y22, y12 : numpy.ndarray
+        Continuous two-port admittance [m/(N s)], complex, with the port convention of
+        eq. (26): ``y11 = v_h/F_h``, ``y22 = (-v_d)/F_d``, ``y12 = y21 = v_h/F_d``.
+    re_y11, re_y22 : numpy.ndarray
+        Their real parts as dissipated powers [m/(N s)] (non-negative, cancellation-free).
+    x : numpy.ndarray
+        ``Re y11 Re y22 - (Re y12)^2 + j (Re y11 Im y22 - Re y12 Im y12)`` [(m/(N s))^2],
+        accurate, complex; zero when :func:`chain_response` was called with ``want_x=False``.
+    sensor_from_handle, sensor_from_actuator : numpy.ndarray or None
+        Gauge force per unit ``F_h`` and per unit force *on* the actuator mass (N x 1),
+        dimensionless, complex; ``sensor_from_actuator`` is ``None`` when
+        :func:`chain_response` was called with ``want_left=False``.
     """
 
     s: np.ndarray
@@ -190,6 +197,32 @@ def chain_response(device: Device, s: np.ndarray, termination: np.ndarray | None
     Every frequency is computed on its own, so a long frequency vector is taken in blocks whose
     work arrays stay in the thread's workspace (:class:`_Workspace`; the results are the same
     bits as in one block).
+
+    Parameters
+    ----------
+    device : Device
+        The chain of ``n`` masses.
+    s : array_like
+        Complex frequencies [rad/s], shape (N,).
+    termination : numpy.ndarray or None, optional
+        An impedance from the actuator mass to ground [N s/m] per frequency, shape (N,), e.g.
+        the PD loop seen through the hold; ``None`` for none.
+    re_termination : numpy.ndarray or None, optional
+        The exact real part (dissipation) of ``termination`` [N s/m], shape (N,), given
+        separately so that no cancellation enters; required with ``termination``.
+    want_x : bool, optional
+        Whether to form ``x`` (else it is zero).
+    want_left : bool, optional
+        Whether to form the responses to a force on the actuator (else ``y22`` comes from a
+        continued fraction and ``sensor_from_actuator`` is ``None``).
+    impedances : tuple of numpy.ndarray or None, optional
+        The ``(node, elem)`` arrays of :func:`analysis.chain.continued_fraction.chain_impedances`
+        at the same ``s``, shapes (n, N) and (n - 1, N); ``None`` builds them.
+
+    Returns
+    -------
+    ChainResponse
+        The admittances, dissipations and gauge responses at ``s``, each of shape (N,).
     """
     s = np.asarray(s, dtype=complex)
     step = _KEEP_ELEMENTS // device.n

@@ -38,6 +38,26 @@ def chain_state_space(device: Device, handle_mass=(0.0,), handle_damping=(0.0,),
     One realization per grasp: ``handle_mass``, ``handle_damping`` and ``handle_stiffness``
     (length G) are added to the handle (mass 0) and from it to ground.  ``friction_damping``
     (length n) adds dampers to ground.
+
+    Parameters
+    ----------
+    device : Device
+        The chain of ``n`` masses.
+    handle_mass : array_like, optional
+        Grasp masses added to the handle [kg], shape (G,).
+    handle_damping : array_like, optional
+        Grasp dampers from the handle to ground [N s/m], shape (G,).
+    handle_stiffness : array_like, optional
+        Grasp springs from the handle to ground [N/m], shape (G,).
+    friction_damping : numpy.ndarray or None, optional
+        Extra dampers from each mass to ground [N s/m], shape (n,); ``None`` for none.
+
+    Returns
+    -------
+    A : numpy.ndarray
+        State matrices [1/s], shape (G, 2n, 2n).
+    B : numpy.ndarray
+        Input matrices (columns ``F_d`` and ``F_ext``) [1/kg], shape (G, 2n, 2).
     """
     n = device.n
     M, Bm, K = device.matrices()
@@ -67,7 +87,22 @@ def chain_state_space(device: Device, handle_mass=(0.0,), handle_damping=(0.0,),
 def handle_state_space(device: Device) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Minimal ``(A, B, C)`` of ``y11``: states ``(d_0..d_{n-2}, v_0..v_{n-1})``, input the handle
     force, output the handle velocity (see the module doc for the transform from
-    :func:`chain_state_space`)."""
+    :func:`chain_state_space`).
+
+    Parameters
+    ----------
+    device : Device
+        The chain of ``n`` masses.
+
+    Returns
+    -------
+    A : numpy.ndarray
+        State matrix, shape (2n - 1, 2n - 1).
+    B : numpy.ndarray
+        Input matrix (the handle force) [1/kg], shape (2n - 1, 1).
+    C : numpy.ndarray
+        Output matrix (the handle velocity), shape (1, 2n - 1).
+    """
     n = device.n
     Ax, Bx = chain_state_space(device)
     Ax, Bx = Ax[0], Bx[0]

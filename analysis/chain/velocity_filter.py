@@ -50,7 +50,19 @@ _CUTOFF = Real(lo=0.0, lo_open=True, allow_inf=True, unit="rad/s")
 
 @dataclass(frozen=True)
 class FilterRealization:
-    """``H_f`` as ``s[k+1] = A s[k] + B d[k]``, ``v[k] = C s[k] + D d[k]`` (``d`` the difference)."""
+    """``H_f`` as ``s[k+1] = A s[k] + B d[k]``, ``v[k] = C s[k] + D d[k]`` (``d`` the difference).
+
+    Parameters
+    ----------
+    A : numpy.ndarray
+        State matrix, shape (p, p) with ``p`` the filter order (0, 1 or 2).
+    B : numpy.ndarray
+        Input vector, shape (p,).
+    C : numpy.ndarray
+        Output vector, shape (p,).
+    D : float
+        Feed-through from the backward difference to the estimate.
+    """
 
     A: np.ndarray
     B: np.ndarray
@@ -68,6 +80,18 @@ class VelocityFilter(SettingsRecord):
 
     ``cutoff`` is ignored by ``"backward"`` (default ``inf``) and required, finite and > 0, by
     the filters; it must also be below the Nyquist frequency of the device it is used with.
+
+    Parameters
+    ----------
+    kind : str, optional
+        One of :data:`FILTER_KINDS`: ``"backward"`` (default), ``"lowpass1"`` or ``"butter2"``.
+    cutoff : float, optional
+        Cut-off frequency ``w_f`` [rad/s]; ``inf`` (default) for ``"backward"``.
+
+    Raises
+    ------
+    ValidationError
+        When ``kind`` is unknown, or ``cutoff`` is not > 0, or not finite for a filter.
     """
 
     record_name: ClassVar[str] = "velocity filter"
@@ -97,6 +121,21 @@ class VelocityFilter(SettingsRecord):
 
         ``"butter2"`` needs ``cutoff < pi/T`` (its pre-warping ``tan(w_f T/2)``); ``"lowpass1"``
         accepts the Nyquist frequency itself (``a = e^{-pi}``; up to rounding of ``2 pi f``).
+
+        Parameters
+        ----------
+        sample_time : float
+            Sample period ``T`` [s] of the device the filter is used with.
+
+        Returns
+        -------
+        float
+            The cut-off [rad/s].
+
+        Raises
+        ------
+        ValidationError
+            When the cut-off is above Nyquist (``"lowpass1"``) or not below it (``"butter2"``).
         """
         nyq = math.pi / sample_time
         if self.kind == "lowpass1" and not self.cutoff <= nyq * (1.0 + 1e-12):
@@ -106,7 +145,25 @@ class VelocityFilter(SettingsRecord):
         return self.cutoff
 
     def coefficients(self, sample_time: float) -> tuple[np.ndarray, np.ndarray]:
-        """``(num, den)`` of ``H_f`` in powers of ``z^{-1}`` (``den[0] = 1``)."""
+        """``(num, den)`` of ``H_f`` in powers of ``z^{-1}`` (``den[0] = 1``).
+
+        Parameters
+        ----------
+        sample_time : float
+            Sample period ``T`` [s] of the device the filter is used with.
+
+        Returns
+        -------
+        num : numpy.ndarray
+            Numerator coefficients, shape (1,) or (3,).
+        den : numpy.ndarray
+            Denominator coefficients, ``den[0] = 1``, shape (p + 1,) with ``p`` the order.
+
+        Raises
+        ------
+        ValidationError
+            When the cut-off is not below Nyquist ``pi/T`` (see :meth:`check`).
+        """
         wf, T = self.check(sample_time), float(sample_time)
         if self.kind == "backward":
             return np.array([1.0]), np.array([1.0])
@@ -121,7 +178,25 @@ class VelocityFilter(SettingsRecord):
         return num, den
 
     def transfer_function(self, sample_time: float) -> tuple[np.ndarray, np.ndarray]:
-        """``(num, den)`` of the whole estimate ``V(z) = H_f(z)(1 - z^{-1})/T`` in ``z^{-1}``."""
+        """``(num, den)`` of the whole estimate ``V(z) = H_f(z)(1 - z^{-1})/T`` in ``z^{-1}``.
+
+        Parameters
+        ----------
+        sample_time : float
+            Sample period ``T`` [s] of the device the filter is used with.
+
+        Returns
+        -------
+        num : numpy.ndarray
+            Numerator coefficients [1/s].
+        den : numpy.ndarray
+            Denominator coefficients, ``den[0] = 1``.
+
+        Raises
+        ------
+        ValidationError
+            When the cut-off is not below Nyquist ``pi/T`` (see :meth:`check`).
+        """
         num, den = self.coefficients(sample_time)
         return np.polymul(num, np.array([1.0, -1.0]) / sample_time), den
 
@@ -130,6 +205,23 @@ class VelocityFilter(SettingsRecord):
 
         ``"lowpass1"`` uses ``1 - a e^{-j wT} = (1 - a) + 2 a sin^2(wT/2) + j a sin(wT)`` (no
         cancellation at low frequency); ``"butter2"`` evaluates its polynomials directly.
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,).
+        sample_time : float
+            Sample period ``T`` [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            ``H_f`` (dimensionless), complex, shape (N,).
+
+        Raises
+        ------
+        ValidationError
+            When the cut-off is not below Nyquist ``pi/T`` (see :meth:`check`).
         """
         w = np.asarray(w, dtype=float)
         th = w * sample_time
@@ -144,14 +236,48 @@ class VelocityFilter(SettingsRecord):
         return np.polyval(num[::-1], zi) / np.polyval(den[::-1], zi)
 
     def response(self, w, sample_time: float) -> np.ndarray:
-        """``V(e^{j w T})``: the whole estimate, ``H_f (1 - e^{-j wT})/T``."""
+        """``V(e^{j w T})``: the whole estimate, ``H_f (1 - e^{-j wT})/T``.
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,).
+        sample_time : float
+            Sample period ``T`` [s].
+
+        Returns
+        -------
+        numpy.ndarray
+            ``V`` [1/s] (velocity estimate per unit position), complex, shape (N,).
+
+        Raises
+        ------
+        ValidationError
+            When the cut-off is not below Nyquist ``pi/T`` (see :meth:`check`).
+        """
         w = np.asarray(w, dtype=float)
         th = 0.5 * w * sample_time
         diff = (2.0j / sample_time) * np.sin(th) * np.exp(-1j * th)
         return self.filter_response(w, sample_time) * diff
 
     def realization(self, sample_time: float) -> FilterRealization:
-        """State space of ``H_f`` driven by the backward difference (controllable canonical form)."""
+        """State space of ``H_f`` driven by the backward difference (controllable canonical form).
+
+        Parameters
+        ----------
+        sample_time : float
+            Sample period ``T`` [s] of the device the filter is used with.
+
+        Returns
+        -------
+        FilterRealization
+            ``(A, B, C, D)`` of order 0, 1 or 2.
+
+        Raises
+        ------
+        ValidationError
+            When the cut-off is not below Nyquist ``pi/T`` (see :meth:`check`).
+        """
         num, den = self.coefficients(sample_time)
         n = den.size - 1
         b = np.r_[num, np.zeros(n + 1 - num.size)]
@@ -167,7 +293,13 @@ class VelocityFilter(SettingsRecord):
         return FilterRealization(A=A, B=B, C=C, D=D)
 
     def label(self) -> str:
-        """Short description, e.g. ``"first-order low-pass at 30 Hz"``."""
+        """Short description, e.g. ``"first-order low-pass at 30 Hz"``.
+
+        Returns
+        -------
+        str
+            The kind in words, and for a filter its cut-off in Hz.
+        """
         if self.is_backward:
             return FILTER_KINDS["backward"]
         return f"{FILTER_KINDS[self.kind]} at {self.cutoff / (2 * math.pi):.4g} Hz"
@@ -189,7 +321,26 @@ def highest_cutoff(sample_time: float) -> float:
 def display_filter(velocity_filter: VelocityFilter | None, sample_time: float) -> VelocityFilter | None:
     """A display's velocity filter, checked against its sample period: ``None`` for the plain
     backward difference (eq. 4, the paper's own coupling, computed by its closed forms), else the
-    filter.  A wrong type or a cut-off at or above Nyquist raises :class:`ValidationError`."""
+    filter.  A wrong type or a cut-off at or above Nyquist raises :class:`ValidationError`.
+
+    Parameters
+    ----------
+    velocity_filter : VelocityFilter or None
+        The display's filter; ``None`` for the backward difference.
+    sample_time : float
+        The display's sample period ``T`` [s].
+
+    Returns
+    -------
+    VelocityFilter or None
+        ``None`` for the plain backward difference, else ``velocity_filter``.
+
+    Raises
+    ------
+    ValidationError
+        When ``velocity_filter`` is not a VelocityFilter or None, or its cut-off is not below
+        Nyquist.
+    """
     if velocity_filter is None:
         return None
     if not isinstance(velocity_filter, VelocityFilter):
