@@ -57,7 +57,17 @@ OPTIMUM_CUTOFFS = 30
 
 @dataclass(frozen=True)
 class ZWidthStudy:
-    """A region with the trials scored against it (``trials``/``score`` ``None`` without a file)."""
+    """A region with the trials scored against it (``trials``/``score`` ``None`` without a file).
+
+    Attributes
+    ----------
+    region : ZWidthRegion
+        The exact (B, K) region of the wall.
+    trials : MeasuredTrials or None
+        The hardware trials, or ``None`` without a trials file.
+    score : TrialScore or None
+        The trials against the region, or ``None`` without a trials file.
+    """
 
     region: ZWidthRegion
     trials: MeasuredTrials | None = None
@@ -65,18 +75,52 @@ class ZWidthStudy:
 
 
 def controller_section(profile: Profile) -> ControllerSection:
-    """The profile's controller section, or the default one (backward difference, B 0.1-100)."""
+    """The profile's controller section, or the default one (backward difference, B 0.1-100).
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+
+    Returns
+    -------
+    ControllerSection
+        The section.
+    """
     return ControllerSection() if profile.controller is None else profile.controller
 
 
 def region_b(profile: Profile) -> np.ndarray:
-    """The region's B values (N s/m): geometric over the section's ``b_range``."""
+    """The region's B values (N s/m): geometric over the section's ``b_range``.
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+
+    Returns
+    -------
+    numpy.ndarray
+        Wall dampings B [N·s/m], shape (b_points,).
+    """
     sec = controller_section(profile)
     return np.geomspace(sec.b_range[0], sec.b_range[1], sec.b_points)
 
 
 def noise_options(profile: Profile) -> dict[str, float | None]:
-    """The noise criterion's keywords from the section: ``encoder_resolution`` (m), ``force_noise`` (N)."""
+    """The noise criterion's keywords from the section: ``encoder_resolution`` (m), ``force_noise`` (N).
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+
+    Returns
+    -------
+    dict of str to float or None
+        ``encoder_resolution`` [m] and ``force_noise`` [N rms]; ``None`` where the criterion is
+        off.
+    """
     sec = controller_section(profile)
     return {"encoder_resolution": sec.encoder_resolution, "force_noise": sec.force_noise}
 
@@ -84,7 +128,27 @@ def noise_options(profile: Profile) -> dict[str, float | None]:
 @dataclass(frozen=True)
 class ZWidthRequest:
     """What the (B, K) region depends on: the device, the velocity filter, the B grid
-    (``b_range``, ``b_points``), the noise criterion and the delays -- not the wall's gains."""
+    (``b_range``, ``b_points``), the noise criterion and the delays -- not the wall's gains.
+
+    Attributes
+    ----------
+    device : Device
+        The device chain.
+    velocity_filter : VelocityFilter or None
+        The controller's velocity filter, ``None`` for the backward difference.
+    b_range : tuple of (float, float)
+        The range of the geometric B grid [N·s/m].
+    b_points : int
+        Number of B grid points.
+    encoder_resolution : float or None
+        Encoder resolution at the handle [m]; ``None``: the noise criterion is off.
+    force_noise : float or None
+        The noise criterion's force-noise tolerance [N rms]; ``None`` for the default or off.
+    delay_samples : int
+        The loop's delay, in samples.
+    implementation_delay : bool
+        Whether the loop has the one-sample implementation delay.
+    """
 
     device: Device
     velocity_filter: VelocityFilter | None
@@ -97,6 +161,18 @@ class ZWidthRequest:
 
     @classmethod
     def of(cls, profile: Profile) -> ZWidthRequest:
+        """The request of ``profile``'s device, controller section and delays.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+
+        Returns
+        -------
+        ZWidthRequest
+            The request.
+        """
         sec = controller_section(profile)
         d, impl = delays(profile)
         return cls(profile.device, profile_filter(profile), tuple(sec.b_range), int(sec.b_points),
@@ -115,7 +191,17 @@ class ZWidthRequest:
 @dataclass(frozen=True)
 class OptimumRequest:
     """What the optimum cut-off depends on: the region's request without its filter (the cut-off is
-    swept), the filter kind optimized and the cut-offs (``None``: the default grid)."""
+    swept), the filter kind optimized and the cut-offs (``None``: the default grid).
+
+    Attributes
+    ----------
+    region : ZWidthRequest
+        The region's request, without its velocity filter.
+    kind : str
+        The filter kind whose cut-off is optimized, e.g. ``"lowpass1"``.
+    cutoffs : tuple of float or None
+        The cut-offs [rad/s]; ``None`` for the default grid.
+    """
 
     region: ZWidthRequest
     kind: str
@@ -123,14 +209,41 @@ class OptimumRequest:
 
     @classmethod
     def of(cls, profile: Profile, kind: str | None = None, cutoffs: np.ndarray | None = None) -> OptimumRequest:
+        """The request of ``profile``'s region, for ``kind`` on ``cutoffs``.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+        kind : str or None, optional
+            The filter kind; ``None`` takes :func:`optimum_kind`.
+        cutoffs : numpy.ndarray or None, optional
+            The cut-offs [rad/s], shape (N,); ``None`` for the default grid.
+
+        Returns
+        -------
+        OptimumRequest
+            The request.
+        """
         region = dataclasses.replace(ZWidthRequest.of(profile), velocity_filter=None)
         return cls(region, optimum_kind(profile) if kind is None else kind,
                    None if cutoffs is None else tuple(float(c) for c in cutoffs))
 
 
 def twoport_limit(request: ZWidthRequest | Profile) -> Callable[[np.ndarray], np.ndarray]:
-    """Eq. (9)'s edge: ``b -> largest k_c`` of ``ImpedanceDisplay(device, velocity_filter=f)``
-    (NaN where eq. 9 has no feasible k_c)."""
+    """Eq. (9)'s edge: ``b -> largest k_c`` of ``ImpedanceDisplay(device, velocity_filter=f)``.
+
+    Parameters
+    ----------
+    request : ZWidthRequest or Profile
+        The request, or a profile.
+
+    Returns
+    -------
+    callable
+        ``limit(b)``: the largest k_c [N/m] at each damping of ``b`` [N·s/m], same shape as
+        ``b`` (NaN where eq. 9 has no feasible k_c).
+    """
     req = ZWidthRequest.of(request) if isinstance(request, Profile) else request
     disp = ImpedanceDisplay(req.device, velocity_filter=req.velocity_filter)
 
@@ -144,7 +257,23 @@ def zwidth_region_result(request: ZWidthRequest | Profile, *, progress: Progress
                          cancelled: Cancelled | None = None) -> ZWidthRegion | None:
     """The exact (B, K) region of the wall with its filter and delays, the passive region and
     eq. (9)'s limit (:func:`analysis.sampled.zwidth_region` is the sampled layer's computation).
-    One piece: reports 0/1 and 1/1; ``None`` once cancelled."""
+
+    One piece: reports 0/1 and 1/1; ``None`` once cancelled.
+
+    Parameters
+    ----------
+    request : ZWidthRequest or Profile
+        The request, or a profile.
+    progress : Progress or None, optional
+        Called as ``progress(done, total)`` while it runs.
+    cancelled : Cancelled or None, optional
+        Polled as ``cancelled() -> bool``; once true the computation stops and returns ``None``.
+
+    Returns
+    -------
+    ZWidthRegion or None
+        The region on the request's B grid, or ``None`` once cancelled.
+    """
     req = ZWidthRequest.of(request) if isinstance(request, Profile) else request
     if progress is not None:
         progress(0, 1)
@@ -159,15 +288,47 @@ def zwidth_region_result(request: ZWidthRequest | Profile, *, progress: Progress
 
 
 def optimum_kind(profile: Profile) -> str:
-    """The filter kind whose cut-off is optimized: the profile's, ``"lowpass1"`` for the backward difference."""
+    """The filter kind whose cut-off is optimized: the profile's, ``"lowpass1"`` for the backward difference.
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+
+    Returns
+    -------
+    str
+        The filter kind.
+    """
     vf = controller_section(profile).velocity_filter
     return "lowpass1" if vf.is_backward else vf.kind
 
 
 def filter_optimum(request: OptimumRequest | Profile, kind: str | None = None, *, cutoffs: np.ndarray | None = None,
                    progress: Progress | None = None, cancelled: Cancelled | None = None) -> FilterOptimum | None:
-    """The region's linear area against the cut-off (default 30 from 5 Hz to 0.9 Nyquist) and the
-    maximizing cut-off (Chawda et al.), for ``kind`` (default :func:`optimum_kind`)."""
+    """The region's linear area against the cut-off and the maximizing cut-off (Chawda et al.).
+
+    The default cut-offs are 30 from 5 Hz to 0.9 Nyquist; the default ``kind`` is
+    :func:`optimum_kind`.
+
+    Parameters
+    ----------
+    request : OptimumRequest or Profile
+        The request, or a profile.
+    kind : str or None, optional
+        With a profile, the filter kind; ``None`` takes :func:`optimum_kind`.
+    cutoffs : numpy.ndarray or None, optional
+        With a profile, the cut-offs [rad/s], shape (N,); ``None`` for the default grid.
+    progress : Progress or None, optional
+        Called as ``progress(done, total)`` while it runs.
+    cancelled : Cancelled or None, optional
+        Polled as ``cancelled() -> bool``; once true the computation stops and returns ``None``.
+
+    Returns
+    -------
+    FilterOptimum or None
+        The areas against the cut-offs and the optimum, or ``None`` once cancelled.
+    """
     req = OptimumRequest.of(request, kind, cutoffs) if isinstance(request, Profile) else request
     r = req.region
     return optimal_filter(r.device, req.kind, None if req.cutoffs is None else np.asarray(req.cutoffs), b=r.b,
@@ -177,14 +338,35 @@ def filter_optimum(request: OptimumRequest | Profile, kind: str | None = None, *
 
 @dataclass(frozen=True)
 class TrialsRequest:
-    """The trials file named by the controller section and its modification time (a rewritten
-    file is read again); ``path`` ``None`` without a file."""
+    """The trials file named by the controller section and its modification time.
+
+    A rewritten file is read again; ``path`` is ``None`` without a file.
+
+    Attributes
+    ----------
+    path : str or None
+        The trials file, or ``None`` when the section names none.
+    mtime_ns : int or None
+        The file's modification time [ns], or ``None`` when it cannot be read.
+    """
 
     path: str | None
     mtime_ns: int | None = None
 
     @classmethod
     def of(cls, profile: Profile) -> TrialsRequest:
+        """The request of ``profile``.
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile.
+
+        Returns
+        -------
+        TrialsRequest
+            The request.
+        """
         path = controller_section(profile).trials
         if path is None:
             return cls(None)
@@ -197,7 +379,23 @@ class TrialsRequest:
 def profile_trials(profile: TrialsRequest | Profile, base: str | os.PathLike | None = None) -> MeasuredTrials | None:
     """The trials file named by the profile's section (relative to ``base`` when given), or ``None``.
 
-    Raises :class:`~analysis.errors.ValidationError` for an unreadable or malformed file."""
+    Parameters
+    ----------
+    profile : TrialsRequest or Profile
+        The request, or a profile.
+    base : str or os.PathLike or None, optional
+        The folder a relative path is relative to; ``None``: the working directory.
+
+    Returns
+    -------
+    MeasuredTrials or None
+        The trials, or ``None`` when the section names no file.
+
+    Raises
+    ------
+    ValidationError
+        For an unreadable or malformed file.
+    """
     path = (TrialsRequest.of(profile) if isinstance(profile, Profile) else profile).path
     if path is None:
         return None
@@ -207,24 +405,74 @@ def profile_trials(profile: TrialsRequest | Profile, base: str | os.PathLike | N
 
 
 def trial_score(region: ZWidthRegion, trials: MeasuredTrials | None) -> ZWidthStudy:
-    """The region with ``trials`` scored against it (:func:`analysis.sampled.score_trials`)."""
+    """The region with ``trials`` scored against it (:func:`analysis.sampled.score_trials`).
+
+    Parameters
+    ----------
+    region : ZWidthRegion
+        The (B, K) region.
+    trials : MeasuredTrials or None
+        The hardware trials, or ``None``.
+
+    Returns
+    -------
+    ZWidthStudy
+        The region with the trials and their score (both ``None`` without trials).
+    """
     if trials is None:
         return ZWidthStudy(region)
     return ZWidthStudy(region, trials, score_trials(region, trials))
 
 
 def wall_edits(b: float, k: float) -> dict[str, float]:
-    """The profile fields a pick at ``(B, K)`` on the region sets: the virtual coupling ``bc``, ``kc``."""
+    """The profile fields a pick at ``(B, K)`` on the region sets: the virtual coupling ``bc``, ``kc``.
+
+    Parameters
+    ----------
+    b : float
+        The picked wall damping B [N·s/m].
+    k : float
+        The picked wall stiffness K [N/m].
+
+    Returns
+    -------
+    dict of str to float
+        ``{"bc": b, "kc": k}``.
+    """
     return {"bc": float(b), "kc": float(k)}
 
 
 def region_wall(profile: Profile) -> tuple[float, float]:
-    """Where the profile's wall sits on the region: ``(bc, kc)``."""
+    """Where the profile's wall sits on the region: ``(bc, kc)``.
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+
+    Returns
+    -------
+    tuple of (float, float)
+        ``(b_c [N·s/m], k_c [N/m])``.
+    """
     return float(profile.bc), float(profile.kc)
 
 
 def with_filter(profile: Profile, velocity_filter: VelocityFilter) -> Profile:
-    """The profile with its controller section's filter replaced (the section created if absent)."""
+    """The profile with its controller section's filter replaced (the section created if absent).
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+    velocity_filter : VelocityFilter
+        The new velocity filter.
+
+    Returns
+    -------
+    Profile
+        The updated profile (a new record; ``profile`` is unchanged).
+    """
     return profile.replace(controller=controller_section(profile).replace(velocity_filter=velocity_filter))
 
 
