@@ -45,12 +45,46 @@ _SAFETY = 1e-9
 
 
 def coupling_admittance(w, sample_time: float, mc: float, bc: float) -> np.ndarray:
-    """``Y_cA = 1/b_c + 1/(m_c s)``, ``s = (z-1)/(Tz)`` (eq. 16)."""
+    """``Y_cA = 1/b_c + 1/(m_c s)``, ``s = (z-1)/(Tz)`` (eq. 16).
+
+    Parameters
+    ----------
+    w : array_like
+        Angular frequencies [rad/s], shape (N,).
+    sample_time : float
+        Sample period ``T`` [s].
+    mc : float
+        Coupling mass m_c [kg].
+    bc : float
+        Coupling damping b_c [N s/m]; ``inf`` for a pure mass.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``Y_cA`` [m/(N s)], complex, shape (N,).
+    """
     return mass_damper_admittance(np.asarray(w, float), sample_time, mc, bc)
 
 
 def re_coupling_impedance(w, sample_time: float, mc: float, bc: float) -> np.ndarray:
-    """``Re(Z_cA) = Re(Y_cA) / |Y_cA|^2`` (left side of eq. 21)."""
+    """``Re(Z_cA) = Re(Y_cA) / |Y_cA|^2`` (left side of eq. 21).
+
+    Parameters
+    ----------
+    w : array_like
+        Angular frequencies [rad/s], shape (N,).
+    sample_time : float
+        Sample period ``T`` [s].
+    mc : float
+        Coupling mass m_c [kg].
+    bc : float
+        Coupling damping b_c [N s/m]; ``inf`` for a pure mass.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``Re(Z_cA)`` [N s/m], shape (N,).
+    """
     y = coupling_admittance(w, sample_time, mc, bc)
     return y.real / (y.real ** 2 + y.imag ** 2)
 
@@ -62,6 +96,25 @@ class AdmittanceDisplay(DisplayBase):
     derivative term, ``K_d(z) = k_p T z/(z-1) + k_d H_f(z)`` (eq. 30), so ``G(z)`` and the bound
     of eq. (21) use the damping the controller really applies.  The coupling ``Y_cA`` (eq. 16)
     has no velocity estimate and is unchanged.
+
+    Parameters
+    ----------
+    device : Device
+        The device chain and its sample period.
+    kp : float
+        Proportional gain k_p of the PD position loop [N/m] (eq. 30).
+    kd : float
+        Derivative gain k_d of the PD position loop [N s/m] (eq. 30).
+    velocity_filter : VelocityFilter or None, optional
+        The controller's velocity filter; ``None`` for the backward difference.
+
+    Raises
+    ------
+    TypeError
+        When ``device`` is not a :class:`~analysis.chain.Device`.
+    ValidationError
+        When ``kp`` or ``kd`` is outside its physical range, or ``velocity_filter`` is not a
+        VelocityFilter or None, or its cut-off is not below Nyquist.
     """
 
     display = "admittance"
@@ -73,6 +126,14 @@ class AdmittanceDisplay(DisplayBase):
         self.velocity_filter = display_filter(velocity_filter, device.sample_time)
 
     def modes(self) -> np.ndarray:
+        """The undamped modes that shape the bound of eq. (21), with ``k_p`` at the actuator.
+
+        Returns
+        -------
+        numpy.ndarray
+            Continuous-time modes [rad/s], sorted, shape (M,)
+            (:func:`~analysis.chain.grids.device_modes`).
+        """
         return grids.device_modes(self.device, actuator_stiffness=self.kp)
 
     def _loop(self, w: np.ndarray):
@@ -106,16 +167,66 @@ class AdmittanceDisplay(DisplayBase):
 
     # -- coupling (eq. 16) -------------------------------------------------------------
     def coupling(self, w, mc: float, bc: float) -> np.ndarray:
-        """``Z_cA = 1/Y_cA`` (eq. 16)."""
+        """``Z_cA = 1/Y_cA`` (eq. 16).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,).
+        mc : float
+            Coupling mass m_c [kg].
+        bc : float
+            Coupling damping b_c [N s/m]; ``inf`` for a pure mass.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``Z_cA`` [N s/m], complex, shape (N,).
+        """
         return 1.0 / coupling_admittance(w, self.device.sample_time, mc, bc)
 
     def coupling_term(self, w, mc: float, bc: float) -> np.ndarray:
-        """``Re(Z_cA)``, the left side of eq. (21)."""
+        """``Re(Z_cA)``, the left side of eq. (21).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,).
+        mc : float
+            Coupling mass m_c [kg].
+        bc : float
+            Coupling damping b_c [N s/m]; ``inf`` for a pure mass.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``Re(Z_cA)`` [N s/m], shape (N,).
+        """
         return re_coupling_impedance(w, self.device.sample_time, mc, bc)
 
     # -- eq. (23), (24) -----------------------------------------------------------------
     def impedance_range(self, w, mc: float, bc: float) -> tuple[np.ndarray, np.ndarray]:
-        """``(Z_min, Z_max)`` of eq. (23) and (24), complex arrays (N s/m)."""
+        """``(Z_min, Z_max)`` of eq. (23) and (24), complex arrays (N s/m).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,).
+        mc : float
+            Coupling mass m_c [kg].
+        bc : float
+            Coupling damping b_c [N s/m]; ``inf`` for a pure mass.
+
+        Returns
+        -------
+        Z_min, Z_max : numpy.ndarray
+            The impedance range [N s/m], complex, each of shape (N,).
+
+        Raises
+        ------
+        ValidationError
+            When a frequency is not finite, > 0 and below Nyquist.
+        """
         w = check_frequencies(w, self.device.sample_time)
         return self._range(self.two_port(w), w, mc, bc)
 
@@ -125,13 +236,42 @@ class AdmittanceDisplay(DisplayBase):
             return d / (g.p11 * d - g.p12 * g.p21), 1.0 / g.p11
 
     def k_max(self) -> float:
-        """Low-frequency stiffness of Z_max: the PD spring in series with the chain springs."""
+        """Low-frequency stiffness of Z_max: the PD spring in series with the chain springs.
+
+        Returns
+        -------
+        float
+            ``1 / (1/k_p + sum 1/k_i)`` [N/m]; 0 when ``k_p <= 0``.
+        """
         if self.kp <= 0:
             return 0.0
         return 1.0 / (1.0 / self.kp + self.device.static_compliance)
 
     def evaluate(self, mc: float, bc: float, w=None, refine: bool = True) -> StabilityResult:
-        """Bound, Re(Z_cA), margin, eta, Z_min, Z_max and headline numbers."""
+        """Bound, Re(Z_cA), margin, eta, Z_min, Z_max and headline numbers.
+
+        Parameters
+        ----------
+        mc : float
+            Coupling mass m_c [kg].
+        bc : float
+            Coupling damping b_c [N s/m].
+        w : array_like or None, optional
+            Angular frequencies [rad/s], shape (N,); ``None`` for :meth:`frequencies`.
+        refine : bool, optional
+            Whether the worst margin and relative margin are refined between grid points
+            (else they are the grid's minima).
+
+        Returns
+        -------
+        StabilityResult
+            The arrays at ``w`` and the headline numbers.
+
+        Raises
+        ------
+        ValidationError
+            When a frequency of ``w`` is not finite, > 0 and below Nyquist.
+        """
         w = self.frequencies() if w is None else check_frequencies(w, self.device.sample_time)
         br = self.bound_result(w)
         term = self.coupling_term(w, mc, bc)
@@ -151,6 +291,22 @@ class AdmittanceDisplay(DisplayBase):
 
         With ``t = u + T/(2 m_c)`` and ``g = T cot(theta)/(2 m_c)`` the condition is
         ``B t^2 - t + B g^2 <= 0``.  Where it has no solution, ``U = -inf``.
+
+        Parameters
+        ----------
+        B : numpy.ndarray
+            The bound of eq. (21) [N s/m], shape (N,).
+        w : numpy.ndarray
+            Angular frequencies [rad/s], shape (N,).
+        mc : float
+            Coupling mass m_c [kg].
+
+        Returns
+        -------
+        L, U : numpy.ndarray
+            Lower and upper limits of ``1/b_c`` [m/(N s)] at each frequency, shape (N,);
+            ``L = -inf``, ``U = inf`` where the bound is not positive, and ``L = inf``,
+            ``U = -inf`` where nothing works (no solution or a NaN bound).
         """
         T = self.device.sample_time
         th = 0.5 * w * T
@@ -175,6 +331,24 @@ class AdmittanceDisplay(DisplayBase):
 
         Conservative: both edges are refined between grid points and pulled inwards by
         1e-9 relative.
+
+        Parameters
+        ----------
+        mc : float
+            Coupling mass m_c [kg], finite and > 0.
+        w : array_like or None, optional
+            Angular frequencies [rad/s], shape (N,); ``None`` for :meth:`frequencies`.
+
+        Returns
+        -------
+        DampingInterval
+            The feasible ``[low, high]`` of b_c [N s/m] and where each edge binds; ``low``
+            and ``high`` are ``None`` when no b_c works.
+
+        Raises
+        ------
+        ValidationError
+            When ``mc`` is not finite and > 0, or a frequency of ``w`` is invalid.
         """
         if isinstance(mc, bool) or not math.isfinite(mc) or mc <= 0:
             raise ValidationError("mc", "> 0 and finite (kg)", mc)
@@ -218,6 +392,25 @@ class AdmittanceDisplay(DisplayBase):
         frequencies and the bisection repeated, so the pinch point is resolved to about
         1e-7 relative.  The final mass is accepted only by the refined, backed-off check
         of :meth:`feasible_damping`, so the result is conservative.
+
+        Parameters
+        ----------
+        w : array_like or None, optional
+            Angular frequencies [rad/s], shape (N,); ``None`` for :meth:`frequencies`.
+        rtol : float, optional
+            Relative tolerance of the bisection in m_c.
+
+        Returns
+        -------
+        MassDesign
+            The smallest m_c [kg], a b_c [N s/m] inside its feasible interval (the geometric
+            mean of its edges, or the lower edge when the upper is infinite), the binding
+            frequency and the interval.
+
+        Raises
+        ------
+        ValueError
+            When no feasible coupling mass is found, or the search does not converge.
         """
         w = self.frequencies() if w is None else check_frequencies(w, self.device.sample_time)
         pts, vals = w, self.bound(w)
@@ -271,6 +464,22 @@ class AdmittanceDisplay(DisplayBase):
 
         ``progress(done, total)`` is called after each m_c; when ``cancelled()`` turns true
         the chart stops and ``None`` is returned.
+
+        Parameters
+        ----------
+        mc_values : array_like
+            Coupling masses m_c [kg], shape (M,).
+        w : array_like or None, optional
+            Angular frequencies [rad/s]; ``None`` for :meth:`frequencies`.
+        progress : callable or None, optional
+            ``progress(done, total)``, called after each m_c.
+        cancelled : callable or None, optional
+            ``cancelled() -> bool``, polled before each m_c; true stops the chart.
+
+        Returns
+        -------
+        MassChart or None
+            The chart, shape (M,) per field; ``None`` when cancelled.
         """
         mcs = np.asarray(mc_values, float)
         low = np.full(mcs.size, np.nan)

@@ -20,7 +20,23 @@ APPARENT_FREQUENCY = 1e-3
 
 
 def safe_ratio(num: np.ndarray, den: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``num/den`` with ``den == 0`` mapped to +-inf (0 where num is 0 too) and a flag."""
+    """``num/den`` with ``den == 0`` mapped to +-inf (0 where num is 0 too) and a flag.
+
+    Parameters
+    ----------
+    num : numpy.ndarray
+        Numerators, shape (N,).
+    den : numpy.ndarray
+        Denominators, shape (N,).
+
+    Returns
+    -------
+    ratio : numpy.ndarray
+        ``num/den``, with ``sign(num) inf`` where ``den == 0`` (0 where ``num`` is 0 too),
+        shape (N,).
+    singular : numpy.ndarray
+        Booleans, ``den == 0``, shape (N,).
+    """
     singular = den == 0
     with np.errstate(divide="ignore", invalid="ignore"):
         out = num / np.where(singular, 1.0, den)
@@ -36,6 +52,15 @@ class FrequencyGrid:
 
     ``W = (2/T) tan(theta)`` is the Tustin image ``s = j W`` (eq. 2); ``imp`` holds the
     chain's (node, element) impedances at ``s`` once a display has built them.
+
+    Parameters
+    ----------
+    key : bytes
+        Identity of the frequency vector (its bytes), compared to reuse the grid.
+    w : numpy.ndarray
+        Validated angular frequencies [rad/s], shape (N,), below Nyquist.
+    sample_time : float
+        Sample period ``T`` [s].
     """
 
     __slots__ = ("key", "w", "th", "sin", "cos", "tan", "W", "imp")
@@ -65,7 +90,18 @@ def _no_nan(res: BoundResult) -> BoundResult:
 
 
 class DisplayBase:
-    """Caches device-dependent arrays per frequency vector; subclasses define the bound."""
+    """Caches device-dependent arrays per frequency vector; subclasses define the bound.
+
+    Parameters
+    ----------
+    device : Device
+        The device chain and its sample period.
+
+    Raises
+    ------
+    TypeError
+        When ``device`` is not an :class:`~analysis.chain.Device`.
+    """
 
     display = ""
 
@@ -80,10 +116,29 @@ class DisplayBase:
 
     # -- grids ------------------------------------------------------------------------
     def modes(self) -> np.ndarray:  # pragma: no cover - overridden
+        """The undamped modes that shape this display's bound (defined by each display).
+
+        Returns
+        -------
+        numpy.ndarray
+            Continuous-time modes [rad/s], sorted, shape (M,).
+
+        Raises
+        ------
+        NotImplementedError
+            Always: a display subclass defines it.
+        """
         raise NotImplementedError
 
     def frequencies(self) -> np.ndarray:
-        """Resonance-aware grid on the analysis band (cached)."""
+        """Resonance-aware grid on the analysis band (cached).
+
+        Returns
+        -------
+        numpy.ndarray
+            Angular frequencies [rad/s], sorted and unique, shape (N,)
+            (:func:`~analysis.chain.grids.resonance_grid` on :meth:`modes`).
+        """
         if self._grid is None:
             self._grid = grids.resonance_grid(self.device, self.modes())
         return self._grid
@@ -97,7 +152,18 @@ class DisplayBase:
         return _no_nan(br), tp
 
     def bound_parts(self, w: np.ndarray) -> BoundResult:
-        """The bound of eq. (9) or (21) with its parts, not cached (dense checks and refinement)."""
+        """The bound of eq. (9) or (21) with its parts, not cached (dense checks and refinement).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,), each > 0 and below Nyquist.
+
+        Returns
+        -------
+        BoundResult
+            The bound and its parts at ``w`` (NaN bounds mapped to +inf, flagged singular).
+        """
         return self._compute_checked(np.asarray(w, float))[0]
 
     def _freq_grid(self, w: np.ndarray, key: bytes | None = None) -> FrequencyGrid:
@@ -128,15 +194,63 @@ class DisplayBase:
         return res
 
     def bound_result(self, w) -> BoundResult:
-        """The bound with its parts (cached)."""
+        """The bound with its parts (cached).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,), each > 0 and below Nyquist.
+
+        Returns
+        -------
+        BoundResult
+            The bound and its parts at ``w``.
+
+        Raises
+        ------
+        ValidationError
+            When a frequency is not finite, > 0 and below Nyquist.
+        """
         return self._cached(w)[0]
 
     def two_port(self, w) -> TwoPort:
-        """The display's two-port: Y(z) of eq. (2) or G(z) of eq. (14) (cached)."""
+        """The display's two-port: Y(z) of eq. (2) or G(z) of eq. (14) (cached).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,), each > 0 and below Nyquist.
+
+        Returns
+        -------
+        TwoPort
+            The two-port at ``w``.
+
+        Raises
+        ------
+        ValidationError
+            When a frequency is not finite, > 0 and below Nyquist.
+        """
         return self._cached(w)[1]
 
     def bound(self, w) -> np.ndarray:
-        """Right-hand side of the design inequality, eq. (9) or (21)."""
+        """Right-hand side of the design inequality, eq. (9) or (21).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,), each > 0 and below Nyquist.
+
+        Returns
+        -------
+        numpy.ndarray
+            The bound, shape (N,): on ``Re(1/Z_c)`` [m/(N s)] or on ``Re(Z_cA)`` [N s/m].
+
+        Raises
+        ------
+        ValidationError
+            When a frequency is not finite, > 0 and below Nyquist.
+        """
         return self.bound_result(w).bound
 
     def _uncached_bound(self, w: np.ndarray) -> np.ndarray:
@@ -151,10 +265,48 @@ class DisplayBase:
         return theta_of(w, self.device.sample_time)
 
     def coupling_term(self, w, a: float, b: float) -> np.ndarray:  # pragma: no cover
+        """The left side of the design inequality for the coupling ``(a, b)`` (defined by each display).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,).
+        a, b : float
+            The coupling's parameters: ``(k_c, b_c)`` of the impedance display or
+            ``(m_c, b_c)`` of the admittance display.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``Re(1/Z_c)`` (eq. 9) or ``Re(Z_cA)`` (eq. 21), shape (N,).
+
+        Raises
+        ------
+        NotImplementedError
+            Always: a display subclass defines it.
+        """
         raise NotImplementedError
 
     def margin(self, w, a: float, b: float) -> np.ndarray:
-        """Coupling term minus bound (>= 0 everywhere means unconditionally stable)."""
+        """Coupling term minus bound (>= 0 everywhere means unconditionally stable).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,).
+        a, b : float
+            The coupling's parameters, as for :meth:`coupling_term`.
+
+        Returns
+        -------
+        numpy.ndarray
+            The margin, shape (N,), in the units of the bound.
+
+        Raises
+        ------
+        ValidationError
+            When a frequency is not finite, > 0 and below Nyquist.
+        """
         w = check_frequencies(w, self.device.sample_time)
         return self.coupling_term(w, a, b) - self.bound(w)
 
@@ -222,6 +374,23 @@ class DisplayBase:
 
         Equivalent to ``(2 Re p11 Re p22' - Re p)/|p|`` but without its cancellation.
         Where ``Re p11 = 0`` (margin infinite) the definition is used directly.
+
+        Parameters
+        ----------
+        re_p11 : numpy.ndarray
+            ``Re p11`` of the device two-port, shape (N,).
+        margin : numpy.ndarray
+            Coupling term minus bound, shape (N,).
+        abs_p : numpy.ndarray
+            ``|p12 p21|``, shape (N,).
+        re_p : numpy.ndarray
+            ``Re(p12 p21)``, shape (N,).
+
+        Returns
+        -------
+        numpy.ndarray
+            ``eta`` of the coupled interface (dimensionless), shape (N,); ``inf`` where
+            ``|p| = 0``.
         """
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             eta = 1.0 + 2.0 * re_p11 * margin / abs_p

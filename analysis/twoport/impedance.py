@@ -55,6 +55,24 @@ def coupling_impedance(w, sample_time: float, kc: float, bc: float,
 
     ``H_f`` is the low-pass of the controller's velocity estimate ``V(z) = H_f(z)(z-1)/(Tz)``
     (:class:`~analysis.chain.velocity_filter.VelocityFilter`): the damping the controller applies.
+
+    Parameters
+    ----------
+    w : array_like
+        Angular frequencies [rad/s], shape (N,).
+    sample_time : float
+        Sample period ``T`` [s].
+    kc : float
+        Coupling stiffness k_c [N/m].
+    bc : float
+        Coupling damping b_c [N s/m].
+    velocity_filter : VelocityFilter or None, optional
+        The velocity estimate's filter; ``None`` (or ``"backward"``) for ``H_f = 1``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``Z_c`` [N s/m], complex, shape (N,).
     """
     w = np.asarray(w, float)
     if velocity_filter is None or velocity_filter.is_backward:
@@ -96,6 +114,23 @@ def kc_upper(bound: np.ndarray, w: np.ndarray, sample_time: float, bc: float) ->
     ``a2 k^2 + a1 k + a0 <= 0`` with ``a2 = B T^2 / (4 sin^2 theta)``,
     ``a1 = T (B b_c - 1/2)``, ``a0 = b_c (B b_c - 1)``.  Returns ``+inf`` where the bound
     is not positive and ``-inf`` where no ``k >= 0`` works (``B b_c > 1``).
+
+    Parameters
+    ----------
+    bound : numpy.ndarray
+        The bound ``B`` of eq. (9) [m/(N s)], shape (N,).
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (N,).
+    sample_time : float
+        Sample period ``T`` [s].
+    bc : float
+        Coupling damping b_c [N s/m].
+
+    Returns
+    -------
+    numpy.ndarray
+        The largest k_c [N/m] at each frequency, shape (N,); ``+inf`` where the bound is not
+        positive, ``-inf`` where no ``k >= 0`` works or the bound is singular.
     """
     T = sample_time
     B = np.asarray(bound, float)
@@ -154,6 +189,21 @@ class ImpedanceDisplay(DisplayBase):
     ``velocity_filter`` (default ``None``: the backward difference of eq. 4) filters the
     coupling's damping term: ``Z_c = b_c H_f(z) + k_c T z/(z-1)``, so eq. (9), Z_max and the
     design use the damping the controller really applies.
+
+    Parameters
+    ----------
+    device : Device
+        The device chain and its sample period.
+    velocity_filter : VelocityFilter or None, optional
+        The controller's velocity filter; ``None`` for the backward difference.
+
+    Raises
+    ------
+    TypeError
+        When ``device`` is not a :class:`~analysis.chain.Device`.
+    ValidationError
+        When ``velocity_filter`` is not a VelocityFilter or None, or its cut-off is not below
+        Nyquist.
     """
 
     display = "impedance"
@@ -164,6 +214,13 @@ class ImpedanceDisplay(DisplayBase):
         self.velocity_filter = display_filter(velocity_filter, device.sample_time)
 
     def modes(self) -> np.ndarray:
+        """The undamped modes that shape the bound of eq. (9) (:func:`~analysis.chain.grids.device_modes`).
+
+        Returns
+        -------
+        numpy.ndarray
+            Continuous-time modes [rad/s], sorted, shape (M,).
+        """
         return grids.device_modes(self.device)
 
     # -- eq. (2), (9) -------------------------------------------------------------------
@@ -193,10 +250,41 @@ class ImpedanceDisplay(DisplayBase):
 
     # -- coupling (eq. 4, 9) -------------------------------------------------------------
     def coupling(self, w, kc: float, bc: float) -> np.ndarray:
+        """The coupling impedance ``Z_c`` of eq. (4) with this display's velocity filter.
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,).
+        kc : float
+            Coupling stiffness k_c [N/m].
+        bc : float
+            Coupling damping b_c [N s/m].
+
+        Returns
+        -------
+        numpy.ndarray
+            ``Z_c`` [N s/m], complex, shape (N,) (:func:`coupling_impedance`).
+        """
         return coupling_impedance(w, self.device.sample_time, kc, bc, self.velocity_filter)
 
     def coupling_term(self, w, kc: float, bc: float) -> np.ndarray:
-        """``Re(1/Z_c)``, the left side of eq. (9)."""
+        """``Re(1/Z_c)``, the left side of eq. (9).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,).
+        kc : float
+            Coupling stiffness k_c [N/m].
+        bc : float
+            Coupling damping b_c [N s/m].
+
+        Returns
+        -------
+        numpy.ndarray
+            ``Re(1/Z_c)`` [m/(N s)], shape (N,).
+        """
         return re_inv_coupling(w, self.device.sample_time, kc, bc, self.velocity_filter)
 
     # -- eq. (11), (12) -----------------------------------------------------------------
@@ -205,6 +293,25 @@ class ImpedanceDisplay(DisplayBase):
 
         ``Z_max`` is the handle impedance of the chain with ``h Z_c`` from the actuator to
         ground, which is eq. (12) rewritten without its subtraction.
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], shape (N,).
+        kc : float
+            Coupling stiffness k_c [N/m].
+        bc : float
+            Coupling damping b_c [N s/m].
+
+        Returns
+        -------
+        Z_min, Z_max : numpy.ndarray
+            The impedance range [N s/m], complex, each of shape (N,).
+
+        Raises
+        ------
+        ValidationError
+            When a frequency is not finite, > 0 and below Nyquist.
         """
         w = check_frequencies(w, self.device.sample_time)
         return 1.0 / self.two_port(w).p11, self._zmax(w, kc, bc)
@@ -230,7 +337,15 @@ class ImpedanceDisplay(DisplayBase):
         return terminated_handle_impedance(self.device, self._impedances(fg), term)
 
     def apparent_impedance(self) -> complex:
-        """Z_min at :data:`APPARENT_FREQUENCY`: the free-motion impedance (device only, cached)."""
+        """Z_min at :data:`APPARENT_FREQUENCY`: the free-motion impedance (device only, cached).
+
+        Returns
+        -------
+        complex
+            The handle impedance [N s/m] at the Tustin image of :data:`APPARENT_FREQUENCY`;
+            its real part is the apparent damping, its imaginary part over ``W`` the apparent
+            mass.
+        """
         if self._apparent is None:
             T = self.device.sample_time
             W = float((2.0 / T) * np.tan(theta_of(np.array([APPARENT_FREQUENCY]), T))[0])
@@ -241,17 +356,57 @@ class ImpedanceDisplay(DisplayBase):
         return self._apparent[0]
 
     def k_max(self, kc: float) -> float:
-        """Low-frequency stiffness of Z_max: coupling spring in series with the chain springs."""
+        """Low-frequency stiffness of Z_max: coupling spring in series with the chain springs.
+
+        Parameters
+        ----------
+        kc : float
+            Coupling stiffness k_c [N/m].
+
+        Returns
+        -------
+        float
+            ``1 / (1/k_c + sum 1/k_i)`` [N/m]; 0 when ``k_c <= 0``.
+        """
         if kc <= 0:
             return 0.0
         return 1.0 / (1.0 / kc + self.device.static_compliance)
 
     def b_min(self) -> float:
-        """Low-frequency damping of Z_min: the device's damping to ground (eq. 11)."""
+        """Low-frequency damping of Z_min: the device's damping to ground (eq. 11).
+
+        Returns
+        -------
+        float
+            The sum of the dampings to ground [N s/m].
+        """
         return self.device.total_ground_damping
 
     def evaluate(self, kc: float, bc: float, w=None, refine: bool = True) -> StabilityResult:
-        """Bound, Re(1/Z_c), margin, eta, Z_min, Z_max and headline numbers."""
+        """Bound, Re(1/Z_c), margin, eta, Z_min, Z_max and headline numbers.
+
+        Parameters
+        ----------
+        kc : float
+            Coupling stiffness k_c [N/m].
+        bc : float
+            Coupling damping b_c [N s/m].
+        w : array_like or None, optional
+            Angular frequencies [rad/s], shape (N,); ``None`` for :meth:`frequencies`.
+        refine : bool, optional
+            Whether the worst margin and relative margin are refined between grid points
+            (else they are the grid's minima).
+
+        Returns
+        -------
+        StabilityResult
+            The arrays at ``w`` and the headline numbers.
+
+        Raises
+        ------
+        ValidationError
+            When a frequency of ``w`` is not finite, > 0 and below Nyquist.
+        """
         if w is None:
             w = self.frequencies()
             br = self.bound_result(w)
@@ -280,6 +435,24 @@ class ImpedanceDisplay(DisplayBase):
         filter the per-frequency limit is :func:`kc_upper_filtered`, and the design is
         refused (``kc=None``) when the result fails eq. (9) somewhere (the filter's phase lag
         can make ``Re Z_c < 0``, which bounds k_c from below).
+
+        Parameters
+        ----------
+        bc : float
+            Coupling damping b_c [N s/m], finite and >= 0.
+        w : array_like or None, optional
+            Angular frequencies [rad/s], shape (N,); ``None`` for :meth:`frequencies`.
+
+        Returns
+        -------
+        StiffnessDesign
+            The largest k_c (``None`` when none works, ``inf`` when every one does), where it
+            binds, the margin there and the number of bound evaluations.
+
+        Raises
+        ------
+        ValidationError
+            When ``bc`` is negative or not finite, or a frequency of ``w`` is invalid.
         """
         if not (math.isfinite(bc) and bc >= 0):
             from analysis.errors import ValidationError
@@ -323,6 +496,22 @@ class ImpedanceDisplay(DisplayBase):
 
         ``progress(done, total)`` is called after each b_c; when ``cancelled()`` turns true
         the chart stops and ``None`` is returned.
+
+        Parameters
+        ----------
+        bc_values : array_like
+            Coupling dampings b_c [N s/m], shape (M,).
+        w : array_like or None, optional
+            Angular frequencies [rad/s]; ``None`` for :meth:`frequencies`.
+        progress : callable or None, optional
+            ``progress(done, total)``, called after each b_c.
+        cancelled : callable or None, optional
+            ``cancelled() -> bool``, polled before each b_c; true stops the chart.
+
+        Returns
+        -------
+        StiffnessChart or None
+            The chart, shape (M,) per field; ``None`` when cancelled.
         """
         bcs = np.asarray(bc_values, float)
         kcs = np.full(bcs.size, np.nan)

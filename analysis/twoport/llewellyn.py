@@ -29,14 +29,40 @@ def _arrays(p: TwoPort | tuple) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.
 
 
 def llewellyn(p: TwoPort | tuple) -> np.ndarray:
-    """Boolean array: Llewellyn's conditions (eq. 1) hold at each frequency."""
+    """Boolean array: Llewellyn's conditions (eq. 1) hold at each frequency.
+
+    Parameters
+    ----------
+    p : TwoPort or tuple of array_like
+        The immittance array: a :class:`TwoPort`, or ``(p11, p12, p21, p22)``, each of
+        shape (N,) (one value per frequency).
+
+    Returns
+    -------
+    numpy.ndarray
+        Booleans, shape (N,): ``Re p11 >= 0``, ``Re p22 >= 0`` and
+        ``2 Re p11 Re p22 >= |p12 p21| + Re(p12 p21)``.
+    """
     p11, p12, p21, p22 = _arrays(p)
     q = p12 * p21
     return (p11.real >= 0) & (p22.real >= 0) & (2 * p11.real * p22.real >= np.abs(q) + q.real)
 
 
 def eta(p: TwoPort | tuple) -> np.ndarray:
-    """Llewellyn/Rollett stability factor; ``>= 1`` with ``Re p11 >= 0`` means stable."""
+    """Llewellyn/Rollett stability factor; ``>= 1`` with ``Re p11 >= 0`` means stable.
+
+    Parameters
+    ----------
+    p : TwoPort or tuple of array_like
+        The immittance array: a :class:`TwoPort`, or ``(p11, p12, p21, p22)``, each of
+        shape (N,) (one value per frequency).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``eta = (2 Re p11 Re p22 - Re(p12 p21)) / |p12 p21|`` (dimensionless), shape (N,);
+        inf or NaN where ``p12 p21 = 0``.
+    """
     p11, p12, p21, p22 = _arrays(p)
     q = p12 * p21
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -58,6 +84,27 @@ def _swap(form: str, a, b, c, d):
 
 
 def convert(p: TwoPort | tuple, src: str, dst: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Convert a 2x2 immittance array between the forms ``z``, ``y``, ``h`` and ``g``."""
+    """Convert a 2x2 immittance array between the forms ``z``, ``y``, ``h`` and ``g``.
+
+    Parameters
+    ----------
+    p : TwoPort or tuple of array_like
+        The immittance array: a :class:`TwoPort`, or ``(p11, p12, p21, p22)``, each of
+        shape (N,) (one value per frequency).
+    src : str
+        The form of ``p``: one of :data:`FORMS`.
+    dst : str
+        The form wanted: one of :data:`FORMS`.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(q11, q12, q21, q22)`` in the form ``dst``, each complex of shape (N,).
+
+    Raises
+    ------
+    ValueError
+        When ``src`` or ``dst`` is not one of :data:`FORMS`.
+    """
     a, b, c, d = _arrays(p)
     return _swap(dst, *_swap(src, a, b, c, d))
