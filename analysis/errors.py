@@ -13,6 +13,19 @@ __all__ = ["ValidationError"]
 class ValidationError(ValueError):
     """A parameter is outside its allowed range.
 
+    Parameters
+    ----------
+    field : str
+        Name of the parameter.
+    allowed : str
+        The allowed range in words.
+    value : object, optional
+        The rejected value.
+    index : int or None, optional
+        Element index inside a vector parameter.
+    within : tuple of str, optional
+        Names of the enclosing records, outermost first.
+
     Attributes
     ----------
     field:
@@ -39,7 +52,19 @@ class ValidationError(ValueError):
         super().__init__(f"{where} = {value!r} is invalid: allowed range is {allowed}")
 
     def inside(self, record: str) -> ValidationError:
-        """The same error, raised from inside the record field ``record`` (prepended to ``within``)."""
+        """The same error, raised from inside the record field ``record`` (prepended to ``within``).
+
+        Parameters
+        ----------
+        record : str
+            Name of the record field that holds the offending field, e.g. ``"grasp"``.
+
+        Returns
+        -------
+        ValidationError
+            A new error with ``within = (record, *self.within)`` and the same cause; the
+            message is unchanged.
+        """
         err = ValidationError(self.field, self.allowed, self.value, self.index, (record, *self.within))
         err.__cause__ = self.__cause__
         return err

@@ -25,7 +25,21 @@ def _candidates() -> list[Path]:
 
 
 def resources_dir() -> Path:
-    """The ``resources/`` directory; raises FileNotFoundError if there is none."""
+    """The ``resources/`` directory; raises FileNotFoundError if there is none.
+
+    Looked for beside the ``analysis`` package first, then under
+    ``<prefix>/share/zwidth/resources``.
+
+    Returns
+    -------
+    pathlib.Path
+        The first candidate directory that exists.
+
+    Raises
+    ------
+    FileNotFoundError
+        When no candidate directory exists (the message lists where it looked).
+    """
     candidates = _candidates()
     for path in candidates:
         if path.is_dir():
@@ -36,5 +50,21 @@ def resources_dir() -> Path:
 
 
 def resource_path(*parts: str) -> Path:
-    """Path of a bundled resource, e.g. ``resource_path("profiles", "hbfd.json")``."""
+    """Path of a bundled resource, e.g. ``resource_path("profiles", "hbfd.json")``.
+
+    Parameters
+    ----------
+    *parts : str
+        Path components below ``resources/``.
+
+    Returns
+    -------
+    pathlib.Path
+        The joined path (not checked for existence).
+
+    Raises
+    ------
+    FileNotFoundError
+        When there is no ``resources/`` directory (:func:`resources_dir`).
+    """
     return resources_dir().joinpath(*parts)
