@@ -37,6 +37,8 @@ PLOTS = {"bound": "bound", "reserve": "reserve", "range": "range", "chart": "cha
          "zwidth-region": "zwidth_region", "filter-optimum": "filter_optimum"}
 #: plots computed with the default controller section (backward difference, B 0.1-100) when the profile has none
 DEFAULT_SECTION_PLOTS = ("zwidth-region", "filter-optimum")
+#: the plots that draw the profile's hardware trials: a bad trials file fails them
+TRIALS_PLOTS = ("zwidth-region",)
 #: the profile section each optional plot needs
 PLOT_SECTIONS = {"transparency": "wall", "robustness": "wall", "step": "wall", "map": "simulation",
                  "scenario-position": "simulation", "scenario-force": "simulation", "identify": "identification",
@@ -181,6 +183,23 @@ def _design(profile_path: str | Path, display: str | None, as_json: bool) -> int
 # -- export-plot and report (headless Qt) -------------------------------------------------------
 
 
+def _with_trials(profile, profile_path: str | Path, check: bool = True):
+    """``(profile, None)`` with a relative trials path made relative to the profile's folder
+    (:func:`analysis.study.resolve_trials`), or ``(None, 1)`` after printing why the profile's
+    trials file cannot be used (file, line and column): a bad trials file fails the command
+    instead of being left out of the plot or the report (issue 22)."""
+    from analysis.errors import ValidationError
+    from analysis.study import profile_trials, resolve_trials
+
+    profile = resolve_trials(profile, Path(profile_path).parent)
+    if check:
+        try:
+            profile_trials(profile)
+        except ValidationError as err:
+            return None, _error(f"{profile_path}: $.controller.trials: {err}")
+    return profile, None
+
+
 def _usage(command: str, message: str) -> int:
     print(f"usage: zwidth {command} ... (see zwidth {command} --help)\nzwidth {command}: error: {message}",
           file=sys.stderr)
@@ -215,6 +234,9 @@ def _export_plot(args: argparse.Namespace) -> int:
         from analysis.profiles import ControllerSection
 
         profile = profile.replace(controller=ControllerSection())
+    profile, code = _with_trials(profile, args.profile, check=args.plot in TRIALS_PLOTS)
+    if profile is None:
+        return code
     _headless()
     from analysis.errors import ValidationError
 
@@ -248,6 +270,9 @@ def _report(args: argparse.Namespace) -> int:
     if report_format(args.output) is None:
         return _usage("report", f"-o {args.output}: the extension must be .pdf or .html")
     profile, code = _load(args.profile)
+    if profile is None:
+        return code
+    profile, code = _with_trials(profile, args.profile)
     if profile is None:
         return code
     _headless()

@@ -214,10 +214,10 @@ def test_trials_are_loaded_and_scored(tmp_path, rigid):
     bad.write_text("b,k,stable\n1,2,1\n1,x,0\n")
     with pytest.raises(ValidationError) as e:
         load_trials(bad)
-    assert "bad.csv" in str(e.value) and "line 3" in str(e.value) and "column k" in str(e.value)
+    assert "bad.csv" in str(e.value) and "line 3" in str(e.value) and "column 'k'" in str(e.value)
     bad.write_text("b,k,stable\n1,2,yes\n")
-    with pytest.raises(ValidationError, match="column stable"):
+    with pytest.raises(ValidationError, match="column 'stable'"):
         load_trials(bad)
     bad.write_text("b,stable\n1,1\n")
-    with pytest.raises(ValidationError, match="column k"):
+    with pytest.raises(ValidationError, match="column 'k'"):
         load_trials(bad)

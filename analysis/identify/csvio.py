@@ -1,7 +1,8 @@
 """Measurement files: FRF and time-series CSV.
 
-Both are comma-separated with one header row; blank lines and lines starting with ``#`` are
-skipped (but counted, so that reported line numbers match an editor's).
+Both are read by the one CSV reader, :func:`analysis.csvtable.read_table`: UTF-8, comma-separated
+with one header row; blank lines and lines starting with ``#`` are skipped (but counted, so that
+reported line numbers match an editor's).
 
 FRF files
     Frequency: exactly one of ``frequency_hz`` or ``frequency_rad_s``.  Response: exactly one of
@@ -14,21 +15,22 @@ Time-series files
     :func:`analysis.identify.estimate_frf`.
 
 Every problem raises :class:`~analysis.identify.MeasurementError` naming the file, the line
-(1-based, header = line 1; the message adds the 1-based data row) and the column: unreadable
-numbers, non-finite values, non-increasing frequency or time, non-positive magnitude,
+(1-based, header = line 1; the message adds the 1-based data row) and the column: a missing
+file, a folder, an empty file, UTF-16 or other non-UTF-8 text, rows with too few or too many
+values, unreadable numbers, non-finite values, non-increasing frequency or time, non-positive magnitude,
 coherence outside [0, 1], unknown, missing, duplicate or mixed columns (both frequency units,
 or two response forms), and too few points.
 """
 
 from __future__ import annotations
 
-import csv
 import math
 import os
-from dataclasses import dataclass
 
 import numpy as np
 
+from analysis import csvtable
+from analysis.csvtable import Table
 from analysis.identify.errors import MeasurementError
 from analysis.identify.measurement import MIN_POINTS, Measurement, make_measurement
 
@@ -40,51 +42,10 @@ FRF_COLUMNS = (*_FREQ, "real", "imag", "magnitude", "magnitude_db", "phase_deg",
 TIME_COLUMNS = ("time_s", "force_n", "position_m")
 
 
-@dataclass(frozen=True)
-class Table:
-    """Columns of a CSV file as float arrays, with the file line of each data row."""
-
-    path: str
-    columns: dict
-    lines: np.ndarray
-
-
 def read_table(path: str | os.PathLike, allowed: tuple[str, ...]) -> Table:
-    """Read a numeric CSV with a header naming only ``allowed`` columns (module doc)."""
-    name = os.fspath(path)
-    try:
-        with open(name, newline="", encoding="utf-8-sig") as fh:
-            rows = [(i + 1, r) for i, r in enumerate(csv.reader(fh))]
-    except OSError as exc:
-        raise MeasurementError(f"cannot read the file: {exc.strerror or exc}", file=name) from exc
-    except UnicodeDecodeError as exc:
-        raise MeasurementError("not a text (UTF-8) file", file=name) from exc
-    rows = [(ln, [c.strip() for c in r]) for ln, r in rows if r and any(c.strip() for c in r)
-            and not r[0].lstrip().startswith("#")]
-    if not rows:
-        raise MeasurementError("empty file: a header row is needed", file=name)
-    hline, header = rows[0]
-    header = [h.lower() for h in header]
-    for h in header:
-        if h not in allowed:
-            raise MeasurementError(f"unknown column (allowed: {', '.join(allowed)})", file=name, line=hline, column=h)
-        if header.count(h) > 1:
-            raise MeasurementError("duplicate column", file=name, line=hline, column=h)
-    data = {h: [] for h in header}
-    lines = []
-    for ln, r in rows[1:]:
-        if len(r) != len(header):
-            raise MeasurementError(f"{len(r)} values, the header has {len(header)} columns", file=name, line=ln)
-        for h, c in zip(header, r):
-            try:
-                v = float(c)
-            except ValueError:
-                raise MeasurementError(f"{c!r} is not a number", file=name, line=ln, column=h) from None
-            if not math.isfinite(v):
-                raise MeasurementError(f"{c!r} is not finite", file=name, line=ln, column=h)
-            data[h].append(v)
-        lines.append(ln)
-    return Table(name, {h: np.array(v, float) for h, v in data.items()}, np.array(lines, int))
+    """Read a numeric CSV with a header naming only ``allowed`` columns (:func:`analysis.csvtable.read_table`,
+    raising :class:`~analysis.identify.MeasurementError`)."""
+    return csvtable.read_table(path, allowed, error=MeasurementError)
 
 
 def _increasing(t: Table, column: str, positive: bool) -> None:
@@ -141,7 +102,7 @@ def _response(t: Table, hline: int) -> np.ndarray:
 def read_frf(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, str]:
     """Frequencies (rad/s), complex response, coherence (or ``None``) and the file name."""
     t = read_table(path, FRF_COLUMNS)
-    hline = int(t.lines[0]) - 1 if t.lines.size else 1
+    hline = t.header_line
     fcol = _one_of(t, _FREQ, "frequency", hline)
     h = _response(t, hline)
     if t.lines.size < MIN_POINTS:
@@ -160,7 +121,7 @@ def read_frf(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray, np.ndarra
 def read_timeseries(path: str | os.PathLike, min_points: int = 64) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``time_s``, ``force_n``, ``position_m`` arrays of a time-series file (checked)."""
     t = read_table(path, TIME_COLUMNS)
-    hline = int(t.lines[0]) - 1 if t.lines.size else 1
+    hline = t.header_line
     for c in TIME_COLUMNS:
         if c not in t.columns:
             raise MeasurementError("column is missing", file=t.path, line=hline, column=c)
@@ -176,14 +137,7 @@ def load_measurement(path: str | os.PathLike, quantity: str = "actuator", bounda
     (recognised by its ``time_s`` column) through :func:`analysis.identify.estimate_frf`
     (``welch`` keyword arguments: ``nperseg``, ``noverlap``, ``window``)."""
     name = os.fspath(path)
-    try:
-        with open(name, encoding="utf-8-sig") as fh:
-            head = next((ln for ln in fh if ln.strip() and not ln.lstrip().startswith("#")), "")
-    except OSError as exc:
-        raise MeasurementError(f"cannot read the file: {exc.strerror or exc}", file=name) from exc
-    except UnicodeDecodeError as exc:
-        raise MeasurementError("not a text (UTF-8) file", file=name) from exc
-    if "time_s" in [c.strip().lower() for c in head.split(",")]:
+    if "time_s" in csvtable.read_header(name, error=MeasurementError)[1]:
         from analysis.identify.welch import estimate_frf
 
         t, f, x = read_timeseries(name)

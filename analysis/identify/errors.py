@@ -8,40 +8,18 @@ editor shows); the message also gives the 1-based data row (line - 1).
 
 from __future__ import annotations
 
-import os
+from analysis.csvtable import CsvError
 
 __all__ = ["FitCancelled", "MeasurementError", "ParameterKeyError"]
 
 
-class MeasurementError(ValueError):
+class MeasurementError(CsvError):
     """A measurement (file or arrays) cannot be used.
 
-    Attributes
-    ----------
-    file:
-        The file as given, or ``None`` for arrays passed in memory.
-    line:
-        1-based line number in the file (header = line 1), or ``None``.
-    column:
-        Column name, or ``None`` when the problem is the file or a row as a whole.
-    reason:
-        The message without the location prefix.
+    A :class:`~analysis.csvtable.CsvError` (the one CSV reader's error): the attributes ``file``
+    (``None`` for arrays passed in memory), ``line`` (1-based, header = line 1), ``column`` and
+    ``reason`` (the message without the location prefix).
     """
-
-    def __init__(self, reason: str, *, file: str | os.PathLike | None = None, line: int | None = None,
-                 column: str | None = None):
-        self.reason = reason
-        self.file = None if file is None else os.fspath(file)
-        self.line = line
-        self.column = column
-        where = []
-        if self.file is not None:
-            where.append(self.file)
-        if line is not None:
-            where.append(f"line {line}" + (f" (data row {line - 1})" if line > 1 else " (header)"))
-        if column is not None:
-            where.append(f"column {column!r}")
-        super().__init__((", ".join(where) + ": " if where else "") + reason)
 
     @property
     def row(self) -> int | None:

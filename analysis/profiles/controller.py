@@ -46,7 +46,8 @@ class ControllerSection:
     """The controller as built: velocity filter, the region's B range (N s/m) and a trials file.
 
     ``b_range`` is ``(min, max)`` with ``0 < min < max`` finite; ``b_points`` in 2..1000;
-    ``trials`` a path (relative paths are relative to the working directory) or ``None``;
+    ``trials`` a path (the command line reads a relative one from the profile's folder:
+    :func:`analysis.study.resolve_trials`) or ``None``;
     ``encoder_resolution`` (m) and ``force_noise`` (N rms) the optional noise criterion (``None``:
     off; ``force_noise`` ``None`` with a resolution is the default 0.1 N).
     """

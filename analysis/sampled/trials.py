@@ -14,16 +14,16 @@ decides the basin and the refinement only polishes it.
 Measured trials
 ---------------
 Colgate & Brown (ICRA 1994) measured the Z-width point by point: a wall ``(B, K)`` is tried on
-the hardware and judged stable or not.  :func:`load_trials` reads such a CSV (columns ``b``,
-``k``, ``stable`` as 1/0, any order, other columns ignored; blank lines and ``#`` comments
-skipped); every problem is a :class:`~analysis.errors.ValidationError` whose field names the
-file, the line and the column.  :func:`score_trials` compares each trial with the region
+the hardware and judged stable or not.  :func:`load_trials` reads such a CSV with the one CSV reader
+(:func:`analysis.csvtable.read_table`: UTF-8, a header row, blank lines and ``#`` comments
+skipped): columns ``b`` and ``k`` (finite, >= 0) and ``stable`` (``1`` or ``0``, nothing else),
+in any order, other columns ignored; every problem is a :class:`TrialsError` (a
+:class:`~analysis.errors.ValidationError`) naming the file, the line and the column.  :func:`score_trials` compares each trial with the region
 (:meth:`~analysis.sampled.zwidth.ZWidthRegion.k_limit`) and lists those the analysis gets wrong.
 """
 
 from __future__ import annotations
 
-import csv
 import math
 import os
 from collections.abc import Callable
@@ -35,6 +35,7 @@ from scipy import optimize
 from analysis.chain.device import Device
 from analysis.chain.velocity_filter import FILTER_KINDS, VelocityFilter, highest_cutoff
 from analysis.checks import choice
+from analysis.csvtable import CsvError, read_table
 from analysis.errors import ValidationError
 from analysis.sampled.velocity_noise import DEFAULT_FORCE_NOISE, noise_limited_damping
 from analysis.sampled.zwidth import (
@@ -45,7 +46,11 @@ from analysis.sampled.zwidth import (
     region_area,
 )
 
-__all__ = ["FilterOptimum", "optimal_filter", "MeasuredTrials", "load_trials", "TrialScore", "score_trials"]
+__all__ = ["FilterOptimum", "optimal_filter", "MeasuredTrials", "TRIAL_COLUMNS", "STABLE_VALUES", "TrialsError",
+           "load_trials", "TrialScore", "score_trials"]
+
+#: The columns of a trials file (any order; other columns are ignored).
+TRIAL_COLUMNS = ("b", "k", "stable")
 
 _AREAS = ("area_linear", "area_log")
 
@@ -186,50 +191,51 @@ class MeasuredTrials:
         return int(self.b.size)
 
 
-def _cell(name: str, line: int, column: str, text: str) -> float:
-    where = f"{name}: line {line}, column {column}"
-    try:
-        x = float(text)
-    except ValueError:
-        raise ValidationError(where, "a number", text) from None
-    if not math.isfinite(x) or x < 0:
-        raise ValidationError(where, ">= 0 and finite", text)
-    return x
+class TrialsError(CsvError, ValidationError):
+    """A trials file that cannot be used: a :class:`~analysis.csvtable.CsvError` (``file``, ``line``,
+    ``column``, ``reason``) that is also a :class:`~analysis.errors.ValidationError` (``field`` is
+    the place, ``allowed`` the reason), so that every caller of a validation error shows it."""
+
+    def __init__(self, reason: str, *, file: str | os.PathLike | None = None, line: int | None = None,
+                 column: str | None = None):
+        CsvError.__init__(self, reason, file=file, line=line, column=column)
+        self.field, self.allowed, self.value, self.index, self.within = self.where, reason, None, None, ()
+
+
+#: The spellings of the ``stable`` column (the guide: "stable (1 or 0)").
+STABLE_VALUES = {"1": 1.0, "0": 0.0}
 
 
 def load_trials(path: str | os.PathLike) -> MeasuredTrials:
-    """Read a CSV of trials (module docstring); errors name the file, the line and the column."""
-    name = os.fspath(path)
-    try:
-        with open(name, newline="", encoding="utf-8-sig") as fh:
-            rows = [(i + 1, r) for i, r in enumerate(csv.reader(fh)) if r and not r[0].lstrip().startswith("#")
-                    and any(c.strip() for c in r)]
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ValidationError(name, "a readable UTF-8 CSV file", str(exc)) from exc
-    if not rows:
-        raise ValidationError(name, "a header row with columns b, k, stable", "an empty file")
-    head_line, header = rows[0]
-    cols = [h.strip().lower() for h in header]
-    idx = {}
-    for col in ("b", "k", "stable"):
-        if cols.count(col) != 1:
-            raise ValidationError(f"{name}: line {head_line}, column {col}", "exactly one column named so", header)
-        idx[col] = cols.index(col)
-    b, k, st, lines = [], [], [], []
-    for line, row in rows[1:]:
-        if len(row) < len(cols):
-            raise ValidationError(f"{name}: line {line}", f"{len(cols)} columns", len(row))
-        b.append(_cell(name, line, "b", row[idx["b"]]))
-        k.append(_cell(name, line, "k", row[idx["k"]]))
-        flag = row[idx["stable"]].strip()
-        if flag not in ("0", "1"):
-            raise ValidationError(f"{name}: line {line}, column stable", "1 (stable) or 0 (unstable)", flag)
-        st.append(flag == "1")
-        lines.append(line)
-    if not b:
-        raise ValidationError(name, "at least one trial row", "a header only")
-    return MeasuredTrials(path=name, b=np.array(b), k=np.array(k), stable=np.array(st, dtype=bool),
-                          lines=np.array(lines, dtype=int))
+    """Read a CSV of trials (module docstring) with :func:`analysis.csvtable.read_table`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The CSV file (relative paths: to the working directory; a profile's is resolved by
+        :func:`analysis.study.profile_trials`).
+
+    Returns
+    -------
+    MeasuredTrials
+        The trials in file order, with the file line of each.
+
+    Raises
+    ------
+    TrialsError
+        For every fault, naming the file, the line and the column (a
+        :class:`~analysis.errors.ValidationError`).
+    """
+    t = read_table(path, TRIAL_COLUMNS, required=TRIAL_COLUMNS, other_columns=True,
+                   choices={"stable": STABLE_VALUES}, error=TrialsError)
+    if not len(t):
+        raise t.fail("a header only: at least one trial row is needed")
+    for col in ("b", "k"):
+        bad = np.flatnonzero(t.columns[col] < 0)
+        if bad.size:
+            raise t.fail(f"{t.columns[col][bad[0]]!r} is negative: must be >= 0", int(bad[0]), col)
+    return MeasuredTrials(path=t.path, b=t.columns["b"], k=t.columns["k"], stable=t.columns["stable"] == 1.0,
+                          lines=t.lines)
 
 
 @dataclass(frozen=True)

@@ -49,7 +49,7 @@ from analysis.twoport.results import Cancelled, Progress
 
 __all__ = ["OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "region_b", "noise_options", "twoport_limit",
            "zwidth_region", "zwidth_region_result", "ZWidthRequest", "OptimumRequest", "TrialsRequest",
-           "filter_optimum", "optimum_kind", "profile_trials", "trial_score", "wall_edits", "region_wall", "with_filter"]
+           "filter_optimum", "optimum_kind", "profile_trials", "resolve_trials", "trials_path", "trial_score", "wall_edits", "region_wall", "with_filter"]
 
 #: Number of cut-offs of the optimum curve (issue 15: 30 in <= 10 s on the worker).
 OPTIMUM_CUTOFFS = 30
@@ -336,6 +336,55 @@ def filter_optimum(request: OptimumRequest | Profile, kind: str | None = None, *
                           progress=progress, cancelled=cancelled, **r.noise)
 
 
+def trials_path(path: str | os.PathLike | None, base: str | os.PathLike | None = None) -> str | None:
+    """A profile's ``trials`` path, made relative to ``base`` when given.
+
+    A relative path is relative to ``base`` (the profile's folder) when given, else to the
+    working directory; ``None`` stays ``None``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike or None
+        The trials path as the controller section names it.
+    base : str or os.PathLike or None, optional
+        The folder a relative path is relative to.
+
+    Returns
+    -------
+    str or None
+        The path (joined to ``base`` when it is relative and ``base`` is given), or ``None``.
+    """
+    if path is None:
+        return None
+    path = os.fspath(path)
+    if base is not None and not os.path.isabs(path):
+        return os.path.join(os.fspath(base), path)
+    return path
+
+
+def resolve_trials(profile: Profile, base: str | os.PathLike) -> Profile:
+    """The profile with a relative ``trials`` path made relative to ``base``, the folder of the
+    profile's file (:func:`trials_path`), so that a profile run from another folder still finds
+    the trials file beside it; the profile itself when it names no file or an absolute one.
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+    base : str or os.PathLike
+        The folder of the profile's file.
+
+    Returns
+    -------
+    Profile
+        The profile with an absolute ``trials`` path, or ``profile`` itself.
+    """
+    sec = profile.controller
+    if sec is None or sec.trials is None or os.path.isabs(sec.trials):
+        return profile
+    return profile.replace(controller=sec.replace(trials=trials_path(sec.trials, os.path.abspath(base))))
+
+
 @dataclass(frozen=True)
 class TrialsRequest:
     """The trials file named by the controller section and its modification time.
@@ -354,20 +403,22 @@ class TrialsRequest:
     mtime_ns: int | None = None
 
     @classmethod
-    def of(cls, profile: Profile) -> TrialsRequest:
-        """The request of ``profile``.
+    def of(cls, profile: Profile, base: str | os.PathLike | None = None) -> TrialsRequest:
+        """The request of ``profile``; a relative path is relative to ``base`` when given (:func:`trials_path`).
 
         Parameters
         ----------
         profile : Profile
             The device profile.
+        base : str or os.PathLike or None, optional
+            The folder a relative path is relative to; ``None``: the working directory.
 
         Returns
         -------
         TrialsRequest
             The request.
         """
-        path = controller_section(profile).trials
+        path = trials_path(controller_section(profile).trials, base)
         if path is None:
             return cls(None)
         try:
@@ -393,14 +444,13 @@ def profile_trials(profile: TrialsRequest | Profile, base: str | os.PathLike | N
 
     Raises
     ------
-    ValidationError
-        For an unreadable or malformed file.
+    TrialsError
+        A :class:`~analysis.errors.ValidationError` naming the file, the line and the column for
+        a missing, unreadable or malformed file (:class:`~analysis.sampled.TrialsError`).
     """
-    path = (TrialsRequest.of(profile) if isinstance(profile, Profile) else profile).path
+    path = trials_path((TrialsRequest.of(profile) if isinstance(profile, Profile) else profile).path, base)
     if path is None:
         return None
-    if base is not None and not os.path.isabs(path):
-        path = os.path.join(os.fspath(base), path)
     return load_trials(path)
 
 
