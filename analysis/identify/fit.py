@@ -5,7 +5,7 @@ Method
 1. Unknowns: ``n`` masses, ``n - 1`` stiffnesses, ``n - 1`` element dampings and the selected
    ground dampings (default: the actuator mass, ``n - 1``), minus the ``fixed`` ones; they are
    fitted as ``theta = log(value)`` (:mod:`analysis.identify.problem`).
-2. Start: :func:`analysis.identify.starts.start_chains` (undamped chain from the resonances and
+2. Start: :func:`analysis.identify.start.start_chains` (undamped chain from the resonances and
    antiresonances of the first ``actuator``/``free`` measurement by the Stieltjes / Lanczos
    inverse; pairs it does not show are placed at peaks of the other measurements or where a fit
    without them misses most, plus seeded candidates).  Every candidate gets a short
@@ -54,7 +54,7 @@ from analysis.identify.measurement import Measurement
 from analysis.identify.params import ChainParameters, parameter_keys, parse_key
 from analysis.identify.problem import FitProblem, solve
 from analysis.identify.results import ChainFit, OrderSelection
-from analysis.identify.starts import other_peaks, start_chains, visible_spectrum
+from analysis.identify.start import other_peaks, start_chains, visible_spectrum
 from analysis.identify.uncertainty import build_fit
 
 __all__ = ["fit_chain", "order_selection"]
@@ -205,7 +205,7 @@ def _hidden_hints(measurements: Sequence[Measurement], n: int, seed: int,
     """Frequencies of resonance pairs an ``n``-mass chain needs but the driving point does not show.
 
     First the peaks of the other measurements away from the visible resonances
-    (:func:`analysis.identify.starts.other_peaks`).  Then a chain with only the visible pairs is
+    (:func:`analysis.identify.start.other_peaks`).  Then a chain with only the visible pairs is
     fitted (briefly) to the driving-point measurement; its misfit ``|log(model/measured)|``,
     smoothed over 5 points, peaks where the hidden pairs sit (a mode that the actuator barely
     sees still leaves a small local signature).  The largest local maxima, at least 20 % apart
