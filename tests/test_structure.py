@@ -1,8 +1,11 @@
 """Size limits and the public-name rule, checked on the source's syntax tree (issue 12, item 7).
 
-- no module of ``analysis/`` or ``app/`` over 400 lines;
+- no module of ``analysis/`` or ``app/`` over 600 lines (issue 21: one concept may take up to about
+  600 lines; the old 400-line cap forced splits of one concept);
 - no class over 250 lines;
 - no function over 60 lines, unless its docstring says it is a "numerical kernel" (and why);
+- docstrings are not counted in any of these sizes: the rule serves readability, and the numpydoc
+  sections of the public API (issue 21) document code without making it longer to read;
 - no private name (one leading underscore, not a dunder) imported from another module, neither as
   ``from x import _y`` nor as ``x._y`` on an imported module;
 - the tests use public names only: no ``from analysis... import _y`` / ``from app... import _y``,
@@ -24,7 +27,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 PACKAGES = ("analysis", "app")
-MAX_MODULE_LINES = 400
+MAX_MODULE_LINES = 600
 MAX_CLASS_LINES = 250
 MAX_FUNCTION_LINES = 60
 KERNEL_PHRASE = "numerical kernel"
@@ -90,16 +93,30 @@ def resolve_from(path: Path, node: ast.ImportFrom) -> str:
 
 # -- sizes -------------------------------------------------------------------------------------------
 
+def docstring_lines(tree: ast.AST) -> int:
+    """Lines taken by the docstrings of ``tree`` and of every definition inside it."""
+    total = 0
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+            body = node.body
+            if (body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant)
+                    and isinstance(body[0].value.value, str)):
+                total += body[0].end_lineno - body[0].lineno + 1  # type: ignore[operator]
+    return total
+
+
 def module_size_violations(path: Path) -> Iterator[Violation]:
-    """A module over ``MAX_MODULE_LINES`` lines."""
-    lines = len(path.read_text(encoding="utf-8").splitlines())
+    """A module over ``MAX_MODULE_LINES`` lines, docstrings not counted."""
+    text = path.read_text(encoding="utf-8")
+    lines = len(text.splitlines()) - docstring_lines(ast.parse(text))
     if lines > MAX_MODULE_LINES:
-        yield Violation(path, 1, f"module has {lines} lines (limit {MAX_MODULE_LINES})")
+        yield Violation(path, 1, f"module has {lines} lines without docstrings (limit {MAX_MODULE_LINES})")
 
 
 def node_lines(node: ast.AST) -> int:
-    """Lines from the ``def``/``class`` statement to its last line (decorators not counted)."""
-    return node.end_lineno - node.lineno + 1  # type: ignore[attr-defined]
+    """Lines from the ``def``/``class`` statement to its last line (decorators and docstrings not
+    counted)."""
+    return node.end_lineno - node.lineno + 1 - docstring_lines(node)  # type: ignore[attr-defined]
 
 
 def definition_size_violations(path: Path, tree: ast.AST, prefix: str = "") -> Iterator[Violation]:
@@ -331,7 +348,7 @@ def main(argv: list[str]) -> int:
         print(__doc__)
         return 2
     sections = [
-        ("Sizes (module 400, class 250, function 60 lines)", size_violations()),
+        ("Sizes (module 600, class 250, function 60 lines)", size_violations()),
         ("Private names imported across modules (analysis/, app/)", package_private_violations()),
         ("Private names used by tests/", private_names_in_tests()),
     ]
