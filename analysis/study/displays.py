@@ -39,8 +39,7 @@ class Gain:
     label : str
         Name for people, e.g. ``"coupling stiffness"``.
     unit : str
-        Unit, e.g. ``"N/m"``.
-    """
+        Unit, e.g. ``"N/m"``."""
 
     field: str
     symbol: str
@@ -53,8 +52,7 @@ class Gain:
         Returns
         -------
         str
-            The symbol and the unit in parentheses (a space for the unit's ``·``).
-        """
+            The symbol and the unit in parentheses (a space for the unit's ``·``)."""
         return f"{self.symbol} ({self.unit.replace('·', ' ')})"
 
 
@@ -99,8 +97,7 @@ class DisplayKind:
         Keys of the design quantities (:data:`~analysis.study.quantities.QUANTITIES`) this
         display reports.
     map_ranges : dict of str to (float, float)
-        Default sweep range (low, high) of each map parameter, in its unit.
-    """
+        Default sweep range (low, high) of each map parameter, in its unit."""
 
     name: str
     title: str
@@ -134,8 +131,7 @@ class DisplayKind:
         Returns
         -------
         DisplayBase
-            The display object of this type (see :meth:`DeviceRequest.build`).
-        """
+            The display object of this type (see :meth:`DeviceRequest.build`)."""
         return DeviceRequest.of(profile, self).build()
 
     def coupling(self, profile: Profile) -> tuple[float, float]:
@@ -149,8 +145,7 @@ class DisplayKind:
         Returns
         -------
         tuple of (float, float)
-            ``(k_c [N/m], b_c [N·s/m])`` or ``(m_c [kg], b_c [N·s/m])``.
-        """
+            ``(k_c [N/m], b_c [N·s/m])`` or ``(m_c [kg], b_c [N·s/m])``."""
         a, b = self.gains
         return float(getattr(profile, a.field)), float(getattr(profile, b.field))
 
@@ -170,8 +165,7 @@ class DisplayKind:
         Returns
         -------
         StabilityResult
-            The bound, the coupling term and their margins over the frequency grid.
-        """
+            The bound, the coupling term and their margins over the frequency grid."""
         disp = self.build(profile) if display is None else display
         return disp.evaluate(*self.coupling(profile), refine=refine)
 
@@ -187,8 +181,7 @@ class DisplayKind:
         Returns
         -------
         tuple of (float, float)
-            The profile's values of :attr:`chart_x` and :attr:`chart_y`, in their units.
-        """
+            The profile's values of :attr:`chart_x` and :attr:`chart_y`, in their units."""
         return float(getattr(profile, self.chart_x.field)), float(getattr(profile, self.chart_y.field))
 
     def edits_from_chart(self, x: float, y: float) -> dict[str, float]:
@@ -204,8 +197,7 @@ class DisplayKind:
         Returns
         -------
         dict of str to float
-            Profile field -> new value.
-        """
+            Profile field -> new value."""
         return {self.chart_x.field: x, self.chart_y.field: y}
 
     def exact_point(self, profile: Profile) -> tuple[float, float]:
@@ -219,8 +211,7 @@ class DisplayKind:
         Returns
         -------
         tuple of (float, float)
-            ``(b_c [N·s/m], y)`` with y the profile's value of :attr:`exact_y`.
-        """
+            ``(b_c [N·s/m], y)`` with y the profile's value of :attr:`exact_y`."""
         return float(getattr(profile, self.gains[1].field)), float(getattr(profile, self.exact_y.field))
 
     def range_labels(self) -> tuple[str, str]:
@@ -229,8 +220,7 @@ class DisplayKind:
         Returns
         -------
         tuple of (str, str)
-            The labels of ``|Z_min|`` and ``|Z_max|``, e.g. ``"|Z_min| (eq. 11)"``.
-        """
+            The labels of ``|Z_min|`` and ``|Z_max|``, e.g. ``"|Z_min| (eq. 11)"``."""
         lo, hi = self.range_equations
         return f"|Z_min| (eq. {lo})", f"|Z_max| (eq. {hi})"
 
@@ -240,8 +230,7 @@ class DisplayKind:
         Returns
         -------
         str
-            The label.
-        """
+            The label."""
         return f"bound (eq. {self.bound_equation})"
 
     @property
@@ -260,8 +249,7 @@ class DisplayKind:
         Returns
         -------
         dict of str to Any
-            ``{"name": ..., "title": ..., "causality": ...}``.
-        """
+            ``{"name": ..., "title": ..., "causality": ...}``."""
         return {"name": self.name, "title": self.title, "causality": self.causality}
 
 
@@ -312,8 +300,7 @@ def display_kind(x: DisplayKind | Profile | StabilityResult | str) -> DisplayKin
     Raises
     ------
     ValueError
-        When the display is neither ``"impedance"`` nor ``"admittance"``.
-    """
+        When the display is neither ``"impedance"`` nor ``"admittance"``."""
     if isinstance(x, DisplayKind):
         return x
     name = x if isinstance(x, str) else x.display
@@ -337,8 +324,7 @@ def profile_filter(profile: Profile) -> VelocityFilter | None:
     -------
     VelocityFilter or None
         The section's filter, or ``None`` when the profile has no ``controller`` section or its
-        filter is the backward difference.
-    """
+        filter is the backward difference."""
     sec = profile.controller
     if sec is None or sec.velocity_filter.is_backward:
         return None
@@ -364,8 +350,7 @@ class DeviceRequest:
         (:func:`profile_filter`).
     pd : tuple of (float, float) or None
         The admittance display's PD position-loop gains ``(k_p [N/m], k_d [N·s/m])`` (eq. 30);
-        ``None`` for the impedance display.
-    """
+        ``None`` for the impedance display."""
 
     display: str
     device: Device
@@ -386,8 +371,7 @@ class DeviceRequest:
         Returns
         -------
         DeviceRequest
-            The request.
-        """
+            The request."""
         k = display_kind(profile if kind is None else kind)
         pd = None if k.is_impedance else (float(profile.kp), float(profile.kd))
         return cls(k.name, profile.device, profile_filter(profile), pd)
@@ -405,8 +389,7 @@ class DeviceRequest:
         -------
         DisplayBase
             The display object (an :class:`AdmittanceDisplay` with the PD gains when :attr:`pd`
-            is set).
-        """
+            is set)."""
         if self.pd is None:
             return ImpedanceDisplay(self.device, velocity_filter=self.velocity_filter)
         return AdmittanceDisplay(self.device, *self.pd, velocity_filter=self.velocity_filter)

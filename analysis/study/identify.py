@@ -169,17 +169,14 @@ def identify_chain(measurements: Sequence[Measurement], n_masses: int, fixed: Ma
     fixed : mapping of str to float or None, optional
         Known parameter values by key, e.g. ``{"masses[0]": 0.2}`` (:func:`parse_fixed`).
     ground_dampings : sequence of int or None, optional
-        The masses with a damper to ground (default: the actuator, the last mass); indices
-        outside a smaller chain are dropped for that order.
+        The masses with a damper to ground (default: the last, the actuator).
     max_masses : int or None, optional
         Fit every order ``1..max_masses`` too, for the order table; ``None`` for no table.
-    progress : callable or None, optional
-        Called as ``progress(done, total)`` while it runs.
-    cancelled : callable or None, optional
-        Polled as ``cancelled() -> bool``; once true the computation stops and returns ``None``.
+    progress, cancelled : callable or None, optional
+        ``progress(done, total)`` is called after each fit; once ``cancelled()`` returns true the
+        fit stops and ``None`` is returned.
     **fit_kwargs
-        Further keyword arguments of :func:`analysis.identify.fit_chain` (e.g. ``sample_time``,
-        ``starts``, ``seed``, ``intervals``).
+        Further keywords of :func:`analysis.identify.fit_chain` (``sample_time``, ``seed`` ...).
 
     Returns
     -------
@@ -189,8 +186,7 @@ def identify_chain(measurements: Sequence[Measurement], n_masses: int, fixed: Ma
     Raises
     ------
     ValueError
-        When the chosen order cannot be fitted to the measurements (unusable input).
-    """
+        When the chosen order cannot be fitted to the measurements (unusable input)."""
     fixed = dict(fixed or {})
     orders = list(range(1, int(max_masses) + 1)) if max_masses else []
     total = 1 + len([n for n in orders if n != n_masses])

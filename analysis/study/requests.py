@@ -35,10 +35,8 @@ Range = tuple[float, float]
 
 
 def scenario_matches(profile: Profile, sc: Scenario) -> bool:
-    """False for the paper's worst case of the *other* display, True for any other scenario.
-
-    E.g. ``impedance_worst_case``, a penalty wall, on an admittance display does not match; any
-    other scenario is the user's choice and matches.
+    """False for the paper's worst case of the *other* display (e.g. ``impedance_worst_case``, a
+    penalty wall, on an admittance display); any other scenario is the user's choice and matches.
 
     Parameters
     ----------
@@ -50,18 +48,15 @@ def scenario_matches(profile: Profile, sc: Scenario) -> bool:
     Returns
     -------
     bool
-        Whether the scenario fits the profile's display.
-    """
+        Whether the scenario fits the profile's display."""
     own = f"{display_kind(profile).name}_worst_case"
     return not (sc.name.endswith("_worst_case") and sc.name in SCENARIOS and sc.name != own)
 
 
 def simulation_section(profile: Profile) -> SimulationSection:
-    """What the Sampled-data tab simulates.
-
-    The profile's simulation section, its scenario following the display
-    (:func:`scenario_matches`: the other display's worst case becomes this display's, the options
-    kept), or, without a section, ideal sensors and the paper's worst case for its display.
+    """What the Sampled-data tab simulates: the profile's simulation section, its scenario following
+    the display (:func:`scenario_matches`: the other display's worst case becomes this display's,
+    the options kept), or, without a section, ideal sensors and the paper's worst case for its display.
 
     Parameters
     ----------
@@ -71,8 +66,7 @@ def simulation_section(profile: Profile) -> SimulationSection:
     Returns
     -------
     SimulationSection
-        The scenario and the simulation options.
-    """
+        The scenario and the simulation options."""
     own = scenario(f"{display_kind(profile).name}_worst_case")
     if profile.simulation is None:
         return SimulationSection(options=SimulationOptions(), scenario=own)
@@ -92,9 +86,7 @@ def delays(profile: Profile) -> tuple[int, bool]:
     Returns
     -------
     tuple of (int, bool)
-        The loop's delay in samples and whether it has the one-sample implementation delay (of
-        :func:`simulation_section`'s options).
-    """
+        The loop's delay in samples and its implementation delay (:func:`simulation_section`)."""
     o = simulation_section(profile).options
     return o.delay_samples, o.implementation_delay
 
@@ -108,8 +100,7 @@ class StabilityRequest:
     model : DeviceRequest
         The device model of the profile's display.
     coupling : tuple of (float, float)
-        ``(k_c [N/m], b_c [N·s/m])`` or ``(m_c [kg], b_c [N·s/m])``.
-    """
+        ``(k_c [N/m], b_c [N·s/m])`` or ``(m_c [kg], b_c [N·s/m])``."""
 
     model: DeviceRequest
     coupling: tuple[float, float]
@@ -125,9 +116,7 @@ class StabilityRequest:
 
         Returns
         -------
-        StabilityRequest
-            The request.
-        """
+        StabilityRequest"""
         return cls(DeviceRequest.of(profile), display_kind(profile).coupling(profile))
 
 
@@ -142,8 +131,7 @@ class ChartRequest:
     grid : tuple of (float, float)
         The range of the geometric grid: b_c [N·s/m] (impedance) or m_c [kg] (admittance).
     points : int
-        Number of grid points.
-    """
+        Number of grid points."""
 
     model: DeviceRequest
     grid: Range
@@ -169,9 +157,7 @@ class ChartRequest:
 
         Returns
         -------
-        ChartRequest
-            The request.
-        """
+        ChartRequest"""
         model = DeviceRequest.of(profile, kind)
         grid = bc_range if model.pd is None else mc_range
         return cls(model, (float(grid[0]), float(grid[1])), int(points))
@@ -197,8 +183,7 @@ class LoopRequest:
     delay_samples : int
         The loop's delay, in samples.
     implementation_delay : bool
-        Whether the loop has the one-sample implementation delay.
-    """
+        Whether the loop has the one-sample implementation delay."""
 
     display: str
     device: Device
@@ -227,9 +212,7 @@ class LoopRequest:
 
         Returns
         -------
-        LoopRequest
-            The request.
-        """
+        LoopRequest"""
         kind = display_kind(profile)
         d, impl = delays(profile)
         gains = (float(profile.kp), float(profile.kd)) if pd or not kind.is_impedance else None
@@ -254,8 +237,7 @@ class MapRequest:
     x_range, y_range : tuple of (float, float)
         The axes' ranges (geometric grids), in the parameters' units.
     points : int
-        Grid points per axis.
-    """
+        Grid points per axis."""
 
     loop: LoopRequest
     x: str
@@ -284,8 +266,7 @@ class MapRequest:
         Raises
         ------
         KeyError
-            When ``params`` lacks one of its keys.
-        """
+            When ``params`` lacks one of its keys."""
         return cls(LoopRequest.of(profile), str(params["x"]), tuple(params["x_range"]), str(params["y"]),
                    tuple(params["y_range"]), int(params["points"]))
 
@@ -299,8 +280,7 @@ class PointRequest:
     loop : LoopRequest
         The loop, with its coupling and PD gains.
     x, y : str
-        The map's parameters (keys of :data:`~analysis.study.labels.PARAMETER_LABELS`).
-    """
+        The map's parameters (keys of :data:`~analysis.study.labels.PARAMETER_LABELS`)."""
 
     loop: LoopRequest
     x: str
@@ -321,9 +301,7 @@ class PointRequest:
 
         Returns
         -------
-        PointRequest
-            The request.
-        """
+        PointRequest"""
         return cls(LoopRequest.of(profile), str(x), str(y))
 
 
@@ -338,8 +316,7 @@ class ExactChartRequest:
     bc_range : tuple of (float, float)
         The range of the geometric b_c grid [N·s/m].
     points : int
-        Number of b_c grid points.
-    """
+        Number of b_c grid points."""
 
     loop: LoopRequest
     bc_range: Range
@@ -360,9 +337,7 @@ class ExactChartRequest:
 
         Returns
         -------
-        ExactChartRequest
-            The request.
-        """
+        ExactChartRequest"""
         return cls(LoopRequest.of(profile, coupling=False, pd=False), (float(bc_range[0]), float(bc_range[1])),
                    int(points))
 
@@ -376,8 +351,7 @@ class ExactLimitRequest:
     loop : LoopRequest
         The loop without its coupling (and without the PD gains on the impedance display).
     bc : float
-        The coupling damping b_c [N·s/m].
-    """
+        The coupling damping b_c [N·s/m]."""
 
     loop: LoopRequest
     bc: float
@@ -393,9 +367,7 @@ class ExactLimitRequest:
 
         Returns
         -------
-        ExactLimitRequest
-            The request.
-        """
+        ExactLimitRequest"""
         return cls(LoopRequest.of(profile, coupling=False, pd=False), display_kind(profile).coupling(profile)[1])
 
 
@@ -408,8 +380,7 @@ class SimulationRequest:
     loop : LoopRequest
         The loop, with its coupling and PD gains.
     section : SimulationSection
-        The scenario and the options (:func:`simulation_section`).
-    """
+        The scenario and the options (:func:`simulation_section`)."""
 
     loop: LoopRequest
     section: SimulationSection
@@ -425,7 +396,5 @@ class SimulationRequest:
 
         Returns
         -------
-        SimulationRequest
-            The request.
-        """
+        SimulationRequest"""
         return cls(LoopRequest.of(profile), simulation_section(profile))
