@@ -35,7 +35,7 @@ import numpy as np
 from analysis.chain.continued_fraction import continued_fraction, node_element_impedances
 from analysis.chain.device import Device
 
-__all__ = ["ChainResponse", "chain_response"]
+__all__ = ["ChainResponse", "chain_response", "KEEP_ELEMENTS", "workspace_buffers"]
 
 
 @dataclass(frozen=True)
@@ -74,7 +74,7 @@ class ChainResponse:
 
 
 #: a work array of up to this many elements (256 KiB of complex) is kept between calls
-_KEEP_ELEMENTS = 1 << 14
+KEEP_ELEMENTS = 1 << 14
 
 
 class _Workspace(threading.local):
@@ -85,7 +85,7 @@ class _Workspace(threading.local):
     which (with the default trim threshold of 128 KiB) is given back to the kernel and
     page-faulted in again by the next call: 1.7x the run time of a process that tunes its
     allocator (``app/allocator.py``; issue 21).  Here each array is a flat buffer, reshaped on
-    request and grown to the largest request up to :data:`_KEEP_ELEMENTS` elements; a larger
+    request and grown to the largest request up to :data:`KEEP_ELEMENTS` elements; a larger
     request (long chains, very fine grids) gets a fresh array that is not kept.  At most about
     4 MiB per thread are kept.  Nothing :func:`chain_response` returns is a view of them.
     """
@@ -103,7 +103,7 @@ class _Workspace(threading.local):
         buf = self.buffers.get(name)
         if buf is None or buf.size < size:
             buf = np.empty(size, dtype=dtype)
-            if size > _KEEP_ELEMENTS:
+            if size > KEEP_ELEMENTS:
                 return buf.reshape(shape)
             self.buffers[name] = buf
         view = buf[:size].reshape(shape)
@@ -112,6 +112,18 @@ class _Workspace(threading.local):
 
 
 _workspace = _Workspace()
+
+
+def workspace_buffers() -> list[np.ndarray]:
+    """The work arrays that :func:`chain_response` keeps for the calling thread.
+
+    Returns
+    -------
+    list of numpy.ndarray
+        The kept flat buffers (each at most :data:`KEEP_ELEMENTS` elements), for inspection: a
+        result never shares memory with them.
+    """
+    return list(_workspace.buffers.values())
 
 
 def _abs2(a: np.ndarray) -> np.ndarray:
@@ -225,7 +237,7 @@ def chain_response(device: Device, s: np.ndarray, termination: np.ndarray | None
         The admittances, dissipations and gauge responses at ``s``, each of shape (N,).
     """
     s = np.asarray(s, dtype=complex)
-    step = _KEEP_ELEMENTS // device.n
+    step = KEEP_ELEMENTS // device.n
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         if device.n == 1 or s.ndim != 1 or s.size <= step or step < _MIN_BLOCK:
             return _chain_response(device, s, termination, re_termination, want_x, want_left, impedances)
