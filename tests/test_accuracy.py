@@ -147,8 +147,14 @@ def test_naive_double_precision_fails_at_low_frequency(hbfd):
     r_adm = float(ref.admittance_bound(hbfd, w, 50e3, 100.0))
     naive_imp = _naive_imp_bound(hbfd, w)
     naive_adm = _naive_adm_bound(hbfd, w, 50e3, 100.0)
-    assert abs(naive_imp - r_imp) > 5 * abs(r_imp)
-    assert abs(naive_adm - r_adm) > 5 * abs(r_adm)
+    # How far off the naive value is depends on the BLAS kernel's rounding (issue 21: 7.9 |r| on
+    # Haswell, 3.8 |r| on Prescott), so the test asserts what holds on every kernel: the two terms
+    # (~0.2) cancel below their own round-off, so the naive bound is a multiple of 2^-55 = 2.8e-17
+    # and cannot come closer to r = 2.0e-17 than 0.38 |r| (0 or 2.8e-17).
+    y11, y12, y21, y22, *_ = _naive_y(hbfd, w)
+    assert 0.125 <= y22.real < 0.25 and abs(r_imp) < 2.0**-55
+    assert abs(naive_imp - r_imp) > 0.3 * abs(r_imp)
+    assert abs(naive_adm - r_adm) > abs(r_adm)  # measured 25-66 |r| across kernels
     # the production code is right there
     assert rel_err(ImpedanceDisplay(hbfd).bound(np.array([w]))[0], r_imp) < 1e-6
     assert rel_err(AdmittanceDisplay(hbfd, 50e3, 100.0).bound(np.array([w]))[0], r_adm) < 1e-9
