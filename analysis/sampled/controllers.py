@@ -106,7 +106,26 @@ class DisplayLoop:
     constraint_memory: ClassVar[tuple[str, ...]]
 
     def check_gains(self, coupling: object, pd: object) -> tuple[tuple[float, float], tuple[float, float]]:
-        """The validated ``coupling`` and PD pair ``(k_p, k_d)`` of a :class:`LoopSpec`."""
+        """The validated ``coupling`` and PD pair ``(k_p, k_d)`` of a :class:`LoopSpec`.
+
+        Parameters
+        ----------
+        coupling : object
+            The coupling gains: ``(k_c [N/m], b_c [N s/m])`` for the impedance display,
+            ``(m_c [kg], b_c [N s/m])`` for the admittance display.
+        pd : object
+            The PD gains ``(k_p [N/m], k_d [N s/m])`` of the admittance display's position loop.
+
+        Returns
+        -------
+        tuple of (tuple of (float, float), tuple of (float, float))
+            ``(coupling, (k_p, k_d))``, validated.
+
+        Raises
+        ------
+        ValidationError
+            When ``coupling`` or ``pd`` is not a pair, or a gain is out of range.
+        """
         try:
             a, b = coupling
         except (TypeError, ValueError) as exc:
@@ -119,38 +138,206 @@ class DisplayLoop:
         return checked, (_NONNEG("kp", kp), _NONNEG("kd", kd))
 
     def check_coupling(self, a: object, b: object, coupling: object) -> tuple[float, float]:
+        """The validated coupling gains of this display.
+
+        Parameters
+        ----------
+        a : object
+            First coupling gain: ``k_c`` [N/m] or ``m_c`` [kg].
+        b : object
+            Coupling damping ``b_c`` [N s/m].
+        coupling : object
+            The whole coupling, named in the error.
+
+        Returns
+        -------
+        tuple of (float, float)
+            The validated ``(a, b)``.
+
+        Raises
+        ------
+        NotImplementedError
+            Always: each display overrides it.
+        """
         raise NotImplementedError
 
     def set_gains(self, p: SimpleNamespace, coupling: tuple[float, float], pd: tuple[float, float]) -> None:
-        """Write the coupling (and PD) gains into the controller constants ``p``."""
+        """Write the coupling (and PD) gains into the controller constants ``p``.
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants, written in place.
+        coupling : tuple of (float, float)
+            The validated coupling (:meth:`check_gains`): ``(k_c [N/m], b_c [N s/m])`` or
+            ``(m_c [kg], b_c [N s/m])``.
+        pd : tuple of (float, float)
+            The validated PD gains ``(k_p [N/m], k_d [N s/m])`` (admittance display only).
+
+        Raises
+        ------
+        NotImplementedError
+            Always: each display overrides it.
+        """
         raise NotImplementedError
 
     def profile_coupling(self, profile: Any) -> tuple[float, float]:
-        """The coupling of this display in a profile."""
+        """The coupling of this display in a profile.
+
+        Parameters
+        ----------
+        profile : Profile
+            A device profile (:class:`~analysis.profiles.model.Profile`).
+
+        Returns
+        -------
+        tuple of (float, float)
+            ``(k_c [N/m], b_c [N s/m])`` or ``(m_c [kg], b_c [N s/m])``.
+
+        Raises
+        ------
+        NotImplementedError
+            Always: each display overrides it.
+        """
         raise NotImplementedError
 
     def default_termination(self) -> Termination:
-        """The paper's worst-case termination for this display (section III)."""
+        """The paper's worst-case termination for this display (section III).
+
+        Returns
+        -------
+        Termination
+            The grasp and the environment.
+
+        Raises
+        ------
+        NotImplementedError
+            Always: each display overrides it.
+        """
         raise NotImplementedError
 
     def memory_names(self, causality: EnvironmentCausality, lag: bool) -> tuple[str, ...]:
-        """Names of the controller memory; ``lag`` adds the delayed environment force."""
+        """Names of the controller memory; ``lag`` adds the delayed environment force.
+
+        Parameters
+        ----------
+        causality : EnvironmentCausality
+            The environment's causality (penalty or constraint architecture).
+        lag : bool
+            Whether the one-sample implementation delay is modelled (adds ``"fe"``).
+
+        Returns
+        -------
+        tuple of str
+            The memory names.
+        """
         return causality.select(self.penalty_memory, self.constraint_memory) + (("fe",) if lag else ())
 
     def rest_memory(self, names: tuple[str, ...], x0: float, wall: bool, xw: float) -> dict:
-        """Controller memory consistent with rest at position ``x0`` (wall at ``xw`` if ``wall``)."""
+        """Controller memory consistent with rest at position ``x0`` (wall at ``xw`` if ``wall``).
+
+        Parameters
+        ----------
+        names : tuple of str
+            Names of the memory (:meth:`memory_names`).
+        x0 : float
+            Rest position of the device [m].
+        wall : bool
+            Whether a wall holds the environment.
+        xw : float
+            Wall position [m].
+
+        Returns
+        -------
+        dict
+            The memory, keyed by ``names``.
+
+        Raises
+        ------
+        NotImplementedError
+            Always: each display overrides it.
+        """
         raise NotImplementedError
 
     def step_for(self, causality: EnvironmentCausality) -> Step:
-        """The controller step of this display against an environment of ``causality``."""
+        """The controller step of this display against an environment of ``causality``.
+
+        Parameters
+        ----------
+        causality : EnvironmentCausality
+            The environment's causality.
+
+        Returns
+        -------
+        Step
+            :meth:`penalty_step` or :meth:`constraint_step`.
+        """
         return causality.select(self.penalty_step, self.constraint_step)
 
     def penalty_step(self, p: SimpleNamespace, y: Any, f: Any, mem: dict,
                      engaged: Engaged = linear_engaged) -> StepResult:
+        """One controller step against a penalty (impedance-causality) environment.
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants: sample period ``T`` [s], ``lag`` (the one-sample implementation
+            delay), the coupling and PD gains (:meth:`set_gains`) and the environment (``kobj``
+            [N/m], ``bobj`` [N s/m], ``me`` [kg], wall position ``xw`` [m], ``wall``).
+        y : float or numpy.ndarray
+            Encoder sample ``y[k]`` [m]: a float (simulator) or a coefficient row (linear analysis).
+        f : float or numpy.ndarray
+            Force-gauge sample ``F_meas[k]`` [N], like ``y``.
+        mem : dict
+            Controller memory at the last sample, keyed by :meth:`memory_names`.
+        engaged : Engaged, optional
+            ``engaged(penetration, flag)``: whether the wall is in contact; by default (linear
+            analysis) exactly when the environment says so.
+
+        Returns
+        -------
+        StepResult
+            ``(F_d, new_memory, F_e, x_e)``: the device force [N] held on ``[kT, (k+1)T)``, the
+            controller memory at this sample, the environment force [N] and position [m].
+
+        Raises
+        ------
+        NotImplementedError
+            Always: each display overrides it.
+        """
         raise NotImplementedError
 
     def constraint_step(self, p: SimpleNamespace, y: Any, f: Any, mem: dict,
                         engaged: Engaged = linear_engaged) -> StepResult:
+        """One controller step against a constraint (admittance-causality) environment.
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants: sample period ``T`` [s], ``lag`` (the one-sample implementation
+            delay), the coupling and PD gains (:meth:`set_gains`) and the environment (``kobj``
+            [N/m], ``bobj`` [N s/m], ``me`` [kg], wall position ``xw`` [m], ``wall``).
+        y : float or numpy.ndarray
+            Encoder sample ``y[k]`` [m]: a float (simulator) or a coefficient row (linear analysis).
+        f : float or numpy.ndarray
+            Force-gauge sample ``F_meas[k]`` [N], like ``y``.
+        mem : dict
+            Controller memory at the last sample, keyed by :meth:`memory_names`.
+        engaged : Engaged, optional
+            ``engaged(penetration, flag)``: whether the wall is in contact; by default (linear
+            analysis) exactly when the environment says so.
+
+        Returns
+        -------
+        StepResult
+            ``(F_d, new_memory, F_e, x_e)``: the device force [N] held on ``[kT, (k+1)T)``, the
+            controller memory at this sample, the environment force [N] and position [m].
+
+        Raises
+        ------
+        NotImplementedError
+            Always: each display overrides it.
+        """
         raise NotImplementedError
 
     def __repr__(self) -> str:
@@ -167,36 +354,154 @@ class ImpedanceLoop(DisplayLoop):
     constraint_memory = ("delta", "xe", "ve")
 
     def check_coupling(self, a: object, b: object, coupling: object) -> tuple[float, float]:
+        """The validated ``(k_c, b_c)``: both at least 0, not both 0.
+
+        Parameters
+        ----------
+        a : object
+            First coupling gain: ``k_c`` [N/m] or ``m_c`` [kg].
+        b : object
+            Coupling damping ``b_c`` [N s/m].
+        coupling : object
+            The whole coupling, named in the error.
+
+        Returns
+        -------
+        tuple of (float, float)
+            The validated ``(a, b)``.
+
+        Raises
+        ------
+        ValidationError
+            When a gain is negative or not a real number, or ``k_c + b_c <= 0``.
+        """
         kc, bc = _NONNEG("kc", a), _NONNEG("bc", b)
         if kc + bc <= 0:
             raise ValidationError("coupling", "k_c + b_c > 0", coupling)
         return kc, bc
 
     def set_gains(self, p: SimpleNamespace, coupling: tuple[float, float], pd: tuple[float, float]) -> None:
+        """Write ``k_c`` and ``b_c`` into the controller constants ``p`` (``pd`` is unused).
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants, written in place.
+        coupling : tuple of (float, float)
+            The validated coupling (:meth:`check_gains`): ``(k_c [N/m], b_c [N s/m])`` or
+            ``(m_c [kg], b_c [N s/m])``.
+        pd : tuple of (float, float)
+            The validated PD gains ``(k_p [N/m], k_d [N s/m])`` (admittance display only).
+        """
         p.kc, p.bc = coupling
 
     def profile_coupling(self, profile: Any) -> tuple[float, float]:
+        """The profile's impedance coupling ``(kc, bc)``.
+
+        Parameters
+        ----------
+        profile : Profile
+            A device profile (:class:`~analysis.profiles.model.Profile`).
+
+        Returns
+        -------
+        tuple of (float, float)
+            ``(k_c [N/m], b_c [N s/m])`` or ``(m_c [kg], b_c [N s/m])``.
+        """
         return (profile.kc, profile.bc)
 
     def default_termination(self) -> Termination:
+        """Hands off against a rigid penalty wall (section III).
+
+        Returns
+        -------
+        Termination
+            The grasp and the environment.
+        """
         return Termination(HANDS_OFF, penalty_wall())
 
     def rest_memory(self, names: tuple[str, ...], x0: float, wall: bool, xw: float) -> dict:
+        """Memory at rest: the environment at ``x0`` (or on the wall), the deflection ``x0 - x_e``.
+
+        Parameters
+        ----------
+        names : tuple of str
+            Names of the memory (:meth:`memory_names`).
+        x0 : float
+            Rest position of the device [m].
+        wall : bool
+            Whether a wall holds the environment.
+        xw : float
+            Wall position [m].
+
+        Returns
+        -------
+        dict
+            The memory, keyed by ``names``.
+        """
         mem = dict.fromkeys(names, 0.0)
         mem["xe"] = x0 if not (wall and x0 > xw) else xw
         mem["delta"] = x0 - mem["xe"]
         return mem
 
     def damper(self, p: SimpleNamespace, mem: dict) -> tuple[Any, Any]:
-        """``(k_c + b_c/T, b_c delta[k-1]/T)``: the coupling force is ``kcp delta - hist`` (eq. 4)."""
+        """``(k_c + b_c/T, b_c delta[k-1]/T)``: the coupling force is ``kcp delta - hist`` (eq. 4).
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants (``kc`` [N/m], ``bc`` [N s/m], ``T`` [s]).
+        mem : dict
+            Controller memory at the last sample (``delta`` [m]).
+
+        Returns
+        -------
+        tuple
+            ``(kcp [N/m], hist [N])``, floats or coefficient rows like ``mem["delta"]``.
+        """
         return p.kc + p.bc / p.T, (p.bc / p.T) * mem["delta"]
 
     def filter_memory(self, p: SimpleNamespace, delta: Any, mem: dict, new: dict) -> None:
-        """Update velocity-filter states in ``new`` (none for the backward difference)."""
+        """Update velocity-filter states in ``new`` (none for the backward difference).
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants.
+        delta : float or numpy.ndarray
+            Coupling deflection at this sample [m].
+        mem : dict
+            Controller memory at the last sample.
+        new : dict
+            Controller memory at this sample, updated in place.
+        """
 
     def penalty_step(self, p: SimpleNamespace, y: Any, f: Any, mem: dict,
                      engaged: Engaged = linear_engaged) -> StepResult:
-        """Eq. (4, 5): coupling and penalty wall, solved together (or the wall a sample late)."""
+        """Eq. (4, 5): coupling and penalty wall, solved together (or the wall a sample late).
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants: sample period ``T`` [s], ``lag`` (the one-sample implementation
+            delay), the coupling and PD gains (:meth:`set_gains`) and the environment (``kobj``
+            [N/m], ``bobj`` [N s/m], ``me`` [kg], wall position ``xw`` [m], ``wall``).
+        y : float or numpy.ndarray
+            Encoder sample ``y[k]`` [m]: a float (simulator) or a coefficient row (linear analysis).
+        f : float or numpy.ndarray
+            Force-gauge sample ``F_meas[k]`` [N], like ``y``.
+        mem : dict
+            Controller memory at the last sample, keyed by :meth:`memory_names`.
+        engaged : Engaged, optional
+            ``engaged(penetration, flag)``: whether the wall is in contact; by default (linear
+            analysis) exactly when the environment says so.
+
+        Returns
+        -------
+        StepResult
+            ``(F_d, new_memory, F_e, x_e)``: the device force [N] held on ``[kT, (k+1)T)``, the
+            controller memory at this sample, the environment force [N] and position [m].
+        """
         T = p.T
         kcp, hist = self.damper(p, mem)
         new: dict = {}
@@ -222,7 +527,30 @@ class ImpedanceLoop(DisplayLoop):
 
     def constraint_step(self, p: SimpleNamespace, y: Any, f: Any, mem: dict,
                         engaged: Engaged = linear_engaged) -> StepResult:
-        """Eq. (4, 6): the coupling drives an object of mass ``m_e``, held by a god-object wall."""
+        """Eq. (4, 6): the coupling drives an object of mass ``m_e``, held by a god-object wall.
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants: sample period ``T`` [s], ``lag`` (the one-sample implementation
+            delay), the coupling and PD gains (:meth:`set_gains`) and the environment (``kobj``
+            [N/m], ``bobj`` [N s/m], ``me`` [kg], wall position ``xw`` [m], ``wall``).
+        y : float or numpy.ndarray
+            Encoder sample ``y[k]`` [m]: a float (simulator) or a coefficient row (linear analysis).
+        f : float or numpy.ndarray
+            Force-gauge sample ``F_meas[k]`` [N], like ``y``.
+        mem : dict
+            Controller memory at the last sample, keyed by :meth:`memory_names`.
+        engaged : Engaged, optional
+            ``engaged(penetration, flag)``: whether the wall is in contact; by default (linear
+            analysis) exactly when the environment says so.
+
+        Returns
+        -------
+        StepResult
+            ``(F_d, new_memory, F_e, x_e)``: the device force [N] held on ``[kT, (k+1)T)``, the
+            controller memory at this sample, the environment force [N] and position [m].
+        """
         T, lag = p.T, p.lag
         kcp, hist = self.damper(p, mem)
         me, be = p.me, p.bobj
@@ -256,26 +584,119 @@ class AdmittanceLoop(DisplayLoop):
     constraint_memory = ("yp", "xc", "ve", "w")
 
     def check_coupling(self, a: object, b: object, coupling: object) -> tuple[float, float]:
+        """The validated ``(m_c, b_c)``: both greater than 0.
+
+        Parameters
+        ----------
+        a : object
+            First coupling gain: ``k_c`` [N/m] or ``m_c`` [kg].
+        b : object
+            Coupling damping ``b_c`` [N s/m].
+        coupling : object
+            The whole coupling, named in the error.
+
+        Returns
+        -------
+        tuple of (float, float)
+            The validated ``(a, b)``.
+
+        Raises
+        ------
+        ValidationError
+            When a gain is not greater than 0 or not a real number.
+        """
         return _POS("mc", a), _POS("bc", b)
 
     def set_gains(self, p: SimpleNamespace, coupling: tuple[float, float], pd: tuple[float, float]) -> None:
+        """Write ``m_c``, ``b_c``, ``k_p`` and ``k_d`` into the controller constants ``p``.
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants, written in place.
+        coupling : tuple of (float, float)
+            The validated coupling (:meth:`check_gains`): ``(k_c [N/m], b_c [N s/m])`` or
+            ``(m_c [kg], b_c [N s/m])``.
+        pd : tuple of (float, float)
+            The validated PD gains ``(k_p [N/m], k_d [N s/m])`` (admittance display only).
+        """
         p.mc, p.bc = coupling
         p.kp, p.kd = pd
 
     def profile_coupling(self, profile: Any) -> tuple[float, float]:
+        """The profile's admittance coupling ``(mc, bc_adm)``.
+
+        Parameters
+        ----------
+        profile : Profile
+            A device profile (:class:`~analysis.profiles.model.Profile`).
+
+        Returns
+        -------
+        tuple of (float, float)
+            ``(k_c [N/m], b_c [N s/m])`` or ``(m_c [kg], b_c [N s/m])``.
+        """
         return (profile.mc, profile.bc_adm)
 
     def default_termination(self) -> Termination:
+        """A rigid grasp in free motion (section III).
+
+        Returns
+        -------
+        Termination
+            The grasp and the environment.
+        """
         return Termination(RIGID_GRASP, free_motion("impedance"))
 
     def rest_memory(self, names: tuple[str, ...], x0: float, wall: bool, xw: float) -> dict:
+        """Memory at rest: the encoder and the commanded position at ``x0``, no coupling velocity.
+
+        Parameters
+        ----------
+        names : tuple of str
+            Names of the memory (:meth:`memory_names`).
+        x0 : float
+            Rest position of the device [m].
+        wall : bool
+            Whether a wall holds the environment.
+        xw : float
+            Wall position [m].
+
+        Returns
+        -------
+        dict
+            The memory, keyed by ``names``.
+        """
         mem = dict.fromkeys(names, 0.0)
         mem["yp"], mem["xc"] = x0, x0
         return mem
 
     def penalty_step(self, p: SimpleNamespace, y: Any, f: Any, mem: dict,
                      engaged: Engaged = linear_engaged) -> StepResult:
-        """Eq. (16, 17): the coupling is driven by ``F_meas - F_e(x_com)`` of the penalty wall."""
+        """Eq. (16, 17): the coupling is driven by ``F_meas - F_e(x_com)`` of the penalty wall.
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants: sample period ``T`` [s], ``lag`` (the one-sample implementation
+            delay), the coupling and PD gains (:meth:`set_gains`) and the environment (``kobj``
+            [N/m], ``bobj`` [N s/m], ``me`` [kg], wall position ``xw`` [m], ``wall``).
+        y : float or numpy.ndarray
+            Encoder sample ``y[k]`` [m]: a float (simulator) or a coefficient row (linear analysis).
+        f : float or numpy.ndarray
+            Force-gauge sample ``F_meas[k]`` [N], like ``y``.
+        mem : dict
+            Controller memory at the last sample, keyed by :meth:`memory_names`.
+        engaged : Engaged, optional
+            ``engaged(penetration, flag)``: whether the wall is in contact; by default (linear
+            analysis) exactly when the environment says so.
+
+        Returns
+        -------
+        StepResult
+            ``(F_d, new_memory, F_e, x_e)``: the device force [N] held on ``[kT, (k+1)T)``, the
+            controller memory at this sample, the environment force [N] and position [m].
+        """
         T, mc, bc = p.T, p.mc, p.bc
         xcp, w = mem["xc"], mem["w"]
         c = T / bc + T * T / mc
@@ -300,7 +721,30 @@ class AdmittanceLoop(DisplayLoop):
 
     def constraint_step(self, p: SimpleNamespace, y: Any, f: Any, mem: dict,
                         engaged: Engaged = linear_engaged) -> StepResult:
-        """Eq. (16, 18): the coupling moves with the object (``v_com = v_e``), held by the wall."""
+        """Eq. (16, 18): the coupling moves with the object (``v_com = v_e``), held by the wall.
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants: sample period ``T`` [s], ``lag`` (the one-sample implementation
+            delay), the coupling and PD gains (:meth:`set_gains`) and the environment (``kobj``
+            [N/m], ``bobj`` [N s/m], ``me`` [kg], wall position ``xw`` [m], ``wall``).
+        y : float or numpy.ndarray
+            Encoder sample ``y[k]`` [m]: a float (simulator) or a coefficient row (linear analysis).
+        f : float or numpy.ndarray
+            Force-gauge sample ``F_meas[k]`` [N], like ``y``.
+        mem : dict
+            Controller memory at the last sample, keyed by :meth:`memory_names`.
+        engaged : Engaged, optional
+            ``engaged(penetration, flag)``: whether the wall is in contact; by default (linear
+            analysis) exactly when the environment says so.
+
+        Returns
+        -------
+        StepResult
+            ``(F_d, new_memory, F_e, x_e)``: the device force [N] held on ``[kT, (k+1)T)``, the
+            controller memory at this sample, the environment force [N] and position [m].
+        """
         T, mc, bc = p.T, p.mc, p.bc
         xcp, w = mem["xc"], mem["w"]
         me, be = p.me, p.bobj
@@ -323,7 +767,28 @@ class AdmittanceLoop(DisplayLoop):
 
     @staticmethod
     def position_loop(p: SimpleNamespace, y: Any, mem: dict, new: dict, xc: Any, fe: Any) -> StepResult:
-        """Eq. (30): the PD position loop ``F_d = k_p e + k_d (e - e[k-1])/T`` on ``e = y - x_com``."""
+        """Eq. (30): the PD position loop ``F_d = k_p e + k_d (e - e[k-1])/T`` on ``e = y - x_com``.
+
+        Parameters
+        ----------
+        p : types.SimpleNamespace
+            Controller constants (``kp`` [N/m], ``kd`` [N s/m], ``T`` [s]).
+        y : float or numpy.ndarray
+            Encoder sample [m].
+        mem : dict
+            Controller memory at the last sample (``yp``, ``xc`` [m]).
+        new : dict
+            Controller memory at this sample, completed in place (``yp``, ``xc``).
+        xc : float or numpy.ndarray
+            Commanded position ``x_com`` at this sample [m].
+        fe : float or numpy.ndarray
+            Environment force at this sample [N], passed through.
+
+        Returns
+        -------
+        StepResult
+            ``(F_d, new, F_e, x_com)``.
+        """
         e = y - xc
         u = p.kp * e + (p.kd / p.T) * (e - (mem["yp"] - mem["xc"]))
         new["yp"], new["xc"] = y, xc
@@ -338,7 +803,18 @@ DISPLAY_LOOPS: dict[str, DisplayLoop] = {IMPEDANCE_LOOP.name: IMPEDANCE_LOOP,
 
 
 def display_loop(display: str | DisplayLoop) -> DisplayLoop:
-    """The loop object of a display name (``ValidationError`` on ``display`` for an unknown one)."""
+    """The loop object of a display name (``ValidationError`` on ``display`` for an unknown one).
+
+    Parameters
+    ----------
+    display : str or DisplayLoop
+        ``"impedance"`` or ``"admittance"``, or a loop object (returned as is).
+
+    Returns
+    -------
+    DisplayLoop
+        :data:`IMPEDANCE_LOOP` or :data:`ADMITTANCE_LOOP`.
+    """
     if isinstance(display, DisplayLoop):
         return display
     return DISPLAY_LOOPS[choice("display", display, DISPLAY_LOOPS, allowed="impedance or admittance")]
