@@ -124,6 +124,28 @@ class LoopSpec:
     (default the paper's 50 kN/m, 100 N s/m).  :attr:`loop` is the display's loop object.
     ``velocity_filter`` (``None`` = the backward difference) filters the damping term's
     velocity estimate (:mod:`analysis.sampled.filtered`).
+
+    Parameters
+    ----------
+    display : str, optional
+        ``"impedance"`` or ``"admittance"``.
+    coupling : tuple of (float, float), optional
+        ``(k_c [N/m], b_c [N s/m])`` (impedance display, both at least 0, not both 0) or
+        ``(m_c [kg], b_c [N s/m])`` (admittance display, both greater than 0).
+    pd : tuple of (float, float), optional
+        ``(k_p [N/m], k_d [N s/m])`` of the admittance display's position loop, at least 0.
+    delay_samples : int, optional
+        Computation delay ``d`` in samples, 0 to 1000.
+    implementation_delay : bool, optional
+        The one-sample delay between coupling and environment (the paper's explicit
+        integration); without it they are solved together.
+    velocity_filter : VelocityFilter or None, optional
+        Filter of the damping term's velocity estimate; ``None`` for the backward difference.
+
+    Raises
+    ------
+    ValidationError
+        When a gain, the delay or the filter is out of range or of the wrong type.
     """
 
     display: str = "impedance"
@@ -158,6 +180,21 @@ def plant_matrices(device: Device, grasps: Sequence[Grasp] | None = None,
     The chain's one state space (:func:`analysis.chain.state_space.chain_state_space`) with the
     grasps added to the handle; ``friction_damping`` (length n) adds dampers to ground (the
     simulator's stick regime).
+
+    Parameters
+    ----------
+    device : Device
+        The chain of ``n`` masses.
+    grasps : sequence of Grasp, optional
+        The grasps on the handle, ``G`` of them (default: hands-off only).
+    friction_damping : numpy.ndarray, optional
+        Dampers to ground [N s/m], shape (n,).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(A, B)``, shapes (G, 2n, 2n) and (G, 2n, 2), state ``X = (q, q')``, inputs
+        ``(F_d, F_ext)``.
     """
     grasps = list(grasps) if grasps is not None else [Grasp()]
     return chain_state_space(device, [g.mass for g in grasps], [g.damping for g in grasps],
@@ -276,6 +313,33 @@ def closed_loop_matrices(device: Device, spec: LoopSpec, terminations: Sequence[
     ``overrides`` replaces controller constants per termination (``"kc"``, ``"bc"``, ``"mc"``,
     ``"kp"``, ``"kd"``, ``"kobj"``, ``"bobj"``, ``"me"``; arrays of length B), which is how
     sweeps over coupling parameters stay one batched eigenvalue computation.
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    spec : LoopSpec
+        Display, gains, delays and velocity filter.
+    terminations : sequence of Termination
+        ``B`` terminations whose environments share one causality.
+    plants : tuple of numpy.ndarray, optional
+        ``(Ad, Bd)`` of :func:`discrete_plants` for a list of grasps (computed here by default).
+    plant_index : numpy.ndarray, optional
+        Index of each termination's plant in ``plants``, shape (B,) (required with ``plants``).
+    overrides : dict of str to numpy.ndarray, optional
+        Controller constants per termination, each of length B.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``Phi``, shape (B, N, N) with ``N = 2n + len(memory) + d``; shape (0, 0, 0) without
+        terminations.
+
+    Raises
+    ------
+    ValidationError
+        When the environments have more than one causality, or an override is unknown or of
+        the wrong length.
     """
     terms = list(terminations)
     if not terms:
@@ -328,6 +392,18 @@ def spectral_radius(Phi: np.ndarray, rigid_tol: float = RIGID_TOL) -> np.ndarray
     z = 1; in double precision a 2x2 Jordan block there splits by ~1e-8, so eigenvalues within
     ``rigid_tol`` of 1 are clamped to magnitude 1.  A true real divergence slower than
     ``rigid_tol`` per sample (e-folding time > 1e6 samples) is not reported.
+
+    Parameters
+    ----------
+    Phi : numpy.ndarray
+        Closed-loop state matrices, shape (..., N, N).
+    rigid_tol : float, optional
+        Distance from z = 1 within which an eigenvalue counts as a rigid-body mode.
+
+    Returns
+    -------
+    numpy.ndarray
+        Spectral radii, shape (...,) (a 0-d array for one matrix).
     """
     ev = np.linalg.eigvals(Phi)
     mag = np.abs(ev)
