@@ -223,15 +223,20 @@ class Real:
         except OverflowError:
             raise ValidationError(name, self.text, value, index) from None
         if x - x != 0.0 and (x != x or not self.allow_inf):  # NaN, or an infinity not allowed
-            raise ValidationError(name, self.not_finite or self.text, x if self.report_float else value, index)
+            raise ValidationError(name, self.not_finite or self.text, x if self.report_float else _python(value), index)
         if not self.in_range(x):
-            raise ValidationError(name, self.text, x if self.report_float else value, index)
+            raise ValidationError(name, self.text, x if self.report_float else _python(value), index)
         return x
 
 
 #: ``> 0 and finite`` and ``>= 0 and finite``.
 POSITIVE = Real(lo=0.0, lo_open=True)
 NONNEGATIVE = Real(lo=0.0)
+
+
+def _python(value: object) -> object:
+    """A numpy scalar as the Python number it holds (errors print ``0.45``, not ``np.float64(0.45)``)."""
+    return value.item() if isinstance(value, np.generic) else value
 
 
 def real(name: str, value: object, *, index: int | None = None, **rule: Any) -> float:
@@ -346,7 +351,7 @@ def integer(name: str, value: object, lo: int, hi: int | None = None, allowed: s
             lo <= value and (hi is None or value <= hi)):
         if allowed is None:
             allowed = f"an integer in [{lo}, {hi}]" if hi is not None else f"an integer >= {lo}"
-        raise ValidationError(name, allowed, value)
+        raise ValidationError(name, allowed, _python(value))
     return int(value)
 
 
@@ -459,7 +464,7 @@ def vector(name: str, values: object, length: int | None = None) -> np.ndarray:
     except (TypeError, ValueError) as exc:
         raise ValidationError(name, "a list of real numbers", values) from exc
     if length is not None and arr.size != length:
-        raise ValidationError(name, f"exactly {length} values", list(np.atleast_1d(values)))
+        raise ValidationError(name, f"exactly {length} values", arr.tolist())
     arr.setflags(write=False)
     return arr
 

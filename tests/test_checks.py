@@ -277,3 +277,17 @@ def test_record_from_dict_errors():
     assert Scenario.from_dict({"name": "inf", "push_end": "inf"}).name == "inf"
     assert rejected(Scenario.from_dict, {"duration": "inf"}).allowed == "a finite number"
     assert rejected(Scenario.from_dict, {"duration": "2"}).allowed == "a real number"
+
+
+def test_errors_print_numpy_values_as_plain_numbers():
+    """A refused numpy value reads as the number it holds, never as ``np.float64(0.45)``."""
+    cases = [
+        (lambda: Real(lo=1.0)("x", np.float64(0.45)), "x = 0.45 is invalid: allowed range is >= 1 and finite"),
+        (lambda: integer("n", np.int64(7), 0, 4), "n = 7 is invalid: allowed range is an integer in [0, 4]"),
+        (lambda: vector("v", np.array([0.45, 1.0]), 3), "v = [0.45, 1.0] is invalid: allowed range is exactly 3 values"),
+        (lambda: SimulationOptions(stick_velocity=np.float64(-0.45)), "stick_velocity = -0.45 is invalid"),
+    ]
+    for call, text in cases:
+        with pytest.raises(ValidationError) as info:
+            call()
+        assert str(info.value).startswith(text) and "np." not in str(info.value)

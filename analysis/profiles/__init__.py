@@ -4,10 +4,12 @@ The modules are layered, each importing only those listed before it (no cycle):
 
 * :mod:`.errors` -- :class:`ProfileError` (file and JSON path of the offending value);
 * :mod:`.sections` -- the optional sections (wall, observer, simulation) and the migration steps;
+* :mod:`.schema` -- the one declaration of each field (type, range, unit; its JSON path is where
+  it sits), from which the loader reads and names the JSON path of every error;
 * :mod:`.model` -- the :class:`Profile` record (light: it holds the settings records of
   :mod:`analysis.transparency.settings` and :mod:`analysis.sampled.scenarios`, never the wall
   design or the simulator);
-* :mod:`.fields` -- checking the fields of a current-schema profile dict;
+* :mod:`.fields` -- reading a current-schema profile dict by the schema;
 * :mod:`.files` -- strict JSON reading, the one atomic file writer (:func:`atomic_write`, used by
   the app's saves, exports and reports too), the bundled presets;
 * :mod:`.io` -- schema version, migrations, ``load_profile``/``save_profile``.
@@ -18,7 +20,7 @@ from __future__ import annotations
 from .errors import ProfileError
 from .controller import ControllerSection, parse_controller
 from .files import WriteError, atomic_write, bundled_profiles, read_json, sweep_temporaries, write_atomically
-from .fields import profile_from_current
+from .fields import error_at, profile_from_current
 from .io import (
     MIGRATIONS,
     SCHEMA_VERSION,
@@ -28,7 +30,8 @@ from .io import (
     profile_to_dict,
     save_profile,
 )
-from .model import DISPLAYS, SCALAR_FIELDS, Profile, ScalarField
+from .model import DISPLAYS, SCALAR_FIELDS, Profile, ScalarField, per_mass_changes
+from .schema import Field, path_of
 from .sections import (
     MIGRATION_STEPS,
     SECTION_KEYS,
@@ -59,6 +62,10 @@ __all__ = [
     "SCALAR_FIELDS",
     "ScalarField",
     "profile_from_current",
+    "error_at",
+    "per_mass_changes",
+    "Field",
+    "path_of",
     "read_json",
     "write_atomically",
     "atomic_write",

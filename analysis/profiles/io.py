@@ -24,8 +24,9 @@ finite, got -1.0``.  Older schema versions are brought up to date by :data:`MIGR
 
 The work is split by what it holds, each module importing only those before it:
 :mod:`analysis.profiles.errors` (:class:`ProfileError`), :mod:`analysis.profiles.sections` (the
-optional sections and their migrations), :mod:`analysis.profiles.model` (the :class:`Profile`
-record), :mod:`analysis.profiles.fields` (checking the fields of a current-schema dict),
+optional sections and their migrations), :mod:`analysis.profiles.schema` (one declaration of each
+field: type, range, unit, and its JSON path by where it sits), :mod:`analysis.profiles.model` (the
+:class:`Profile` record), :mod:`analysis.profiles.fields` (reading a current-schema dict by the schema),
 :mod:`analysis.profiles.files` (strict JSON reading, atomic writing, bundled presets).  This
 module holds the schema version, the migrations and the public entry points, and re-exports the
 public names of the others.

@@ -16,18 +16,17 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 from analysis.chain.device import Device
-from analysis.chain.limits import LIMITS, Limit, check_simulation_size
+from analysis.chain.limits import Limit, check_simulation_size
 from analysis.checks import Real, choice, string
 from analysis.errors import ValidationError
 from analysis.profiles.controller import ControllerSection
 from analysis.profiles.identification import IdentificationSection, check_against_device
+from analysis.profiles.schema import DISPLAYS, FIELDS_BY_NAME, GAIN_NAMES
 from analysis.profiles.sections import SimulationSection
 from analysis.transparency.settings import ObserverSettings, WallSettings
 
-__all__ = ["DISPLAYS", "SCALAR_FIELDS", "ScalarField", "Profile"]
+__all__ = ["DISPLAYS", "SCALAR_FIELDS", "ScalarField", "Profile", "per_mass_changes"]
 
-#: The two display types (section III impedance display, section IV admittance display).
-DISPLAYS = ("impedance", "admittance")
 
 
 class ScalarField(NamedTuple):
@@ -52,16 +51,10 @@ class ScalarField(NamedTuple):
         return self.limit.rule
 
 
-#: Profile field -> its JSON path and physical range (:data:`analysis.chain.limits.LIMITS`);
-#: used for validation and error translation.
-SCALAR_FIELDS: dict[str, ScalarField] = {
-    "kc": ScalarField("$.impedance_coupling.stiffness", LIMITS["kc"]),
-    "bc": ScalarField("$.impedance_coupling.damping", LIMITS["bc"]),
-    "mc": ScalarField("$.admittance_coupling.mass", LIMITS["mc"]),
-    "bc_adm": ScalarField("$.admittance_coupling.damping", LIMITS["bc_adm"]),
-    "kp": ScalarField("$.pd_gains.stiffness", LIMITS["kp"]),
-    "kd": ScalarField("$.pd_gains.damping", LIMITS["kd"]),
-}
+#: Profile field -> its JSON path and physical range (:data:`analysis.chain.limits.LIMITS`), derived
+#: from the schema's declarations (:data:`analysis.profiles.schema.SCHEMA`).
+SCALAR_FIELDS: dict[str, ScalarField] = {name: ScalarField(FIELDS_BY_NAME[name][0], FIELDS_BY_NAME[name][1].rule)
+                                         for name in GAIN_NAMES}
 
 
 @dataclass(frozen=True)
@@ -141,3 +134,36 @@ class Profile:
         if unknown:
             raise TypeError(f"Profile has no field(s) {', '.join(sorted(unknown))}")
         return dataclasses.replace(self, **changes)
+
+
+def per_mass_changes(profile: Profile, n: int, removed: int | None = None) -> dict[str, object]:
+    """The section changes that keep every list indexed by mass (the simulator's ``friction``) at one
+    value per mass when ``profile``'s device becomes ``n`` masses.
+
+    Apply them with the new device (``profile.replace(device=new, **per_mass_changes(...))``): the
+    loader refuses a per-mass list whose length differs from the device's masses.
+
+    Parameters
+    ----------
+    profile : Profile
+        The profile before the chain changes.
+    n : int
+        The new number of masses.
+    removed : int or None
+        The (0-based) mass removed; ``None``: masses added at the actuator end (without friction)
+        or dropped from it.
+
+    Returns
+    -------
+    dict
+        ``{"simulation": SimulationSection}`` with the resized list, or ``{}`` when nothing changes.
+    """
+    sim = profile.simulation
+    if sim is None or not sim.options.friction or len(sim.options.friction) == n:
+        return {}
+    friction = list(sim.options.friction)
+    if removed is not None and 0 <= removed < len(friction):
+        del friction[removed]
+    friction = (friction + [0.0] * n)[:n]
+    return {"simulation": SimulationSection(options=sim.options.replace(friction=tuple(friction)),
+                                            scenario=sim.scenario)}

@@ -15,6 +15,7 @@ from PySide6.QtGui import QUndoCommand, QUndoStack
 
 from analysis import Device, ValidationError, damping_from_ratio
 from analysis.chain.limits import DAMPING_RATIO
+from analysis.profiles import per_mass_changes
 
 from app.core.model import ProfileModel
 
@@ -164,7 +165,7 @@ class Editor(QObject):
             new = dev.replace(masses=m, stiffnesses=k, dampings=b, ground_dampings=g)
         except ValidationError as err:
             return describe_error(err)
-        return self.edit_many({"device": new}, "Add mass")
+        return self.edit_many({"device": new, **per_mass_changes(self.model.profile, new.n)}, "Add mass")
 
     def remove_mass(self, index: int | None = None) -> str | None:
         """Remove a mass (the last one by default) and the element that joined it."""
@@ -183,7 +184,8 @@ class Editor(QObject):
                          sample_time=dev.sample_time, band_min=dev.band_min)
         except ValidationError as err:
             return describe_error(err)
-        return self.edit_many({"device": new}, f"Remove mass {i + 1}")
+        return self.edit_many({"device": new, **per_mass_changes(self.model.profile, new.n, removed=i)},
+                              f"Remove mass {i + 1}")
 
 
 def _equal(a: object, b: object) -> bool:

@@ -1,0 +1,295 @@
+"""The profile schema: one declaration of each field, its JSON path derived from where it sits.
+
+:data:`SCHEMA` is the tree of a current-schema profile file.  Each :class:`Field` gives a JSON
+key, what kind of value it holds, its rule (a :class:`~analysis.chain.limits.Limit` of
+:mod:`analysis.chain.limits`: type, physical range and unit, or a :class:`~analysis.checks.Real`)
+and the name the API gives the value (``Device(masses=...)``, ``Profile(kc=...)``: the ``field``
+of a :class:`~analysis.errors.ValidationError`).  The JSON path of a field is the chain of keys
+above it, so nothing maps names to paths by hand:
+
+* the loader (:mod:`analysis.profiles.fields`) reads the top level and the device by these
+  declarations, and reports an error of :class:`~analysis.chain.Device` or
+  :class:`~analysis.profiles.Profile` at :func:`path_of` the name it carries;
+* :data:`analysis.profiles.SCALAR_FIELDS` (the couplings and gains) is derived from it;
+* a list declared :data:`PER_MASS` (``ground_dampings``, the simulator's ``friction``) is checked
+  against the device's number of masses wherever it sits (:data:`PER_MASS_LISTS`).
+
+The optional sections (``wall``, ``observer``, ``simulation``, ``identification``,
+``controller``) are validated by their own records (:mod:`analysis.profiles.sections`,
+:mod:`~analysis.profiles.identification`, :mod:`~analysis.profiles.controller`), whose field
+names are their JSON keys; the tree declares only what the profile checks across them (the
+per-mass friction, the scenario's duration against the simulation's size, the velocity
+filter's cut-off against Nyquist).
+
+Numerics only: this module never imports Qt.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from analysis.chain.limits import (
+    BAND_MIN,
+    DAMPING_RATIO,
+    GROUND_DAMPING,
+    LIMITS,
+    MASS,
+    SAMPLE_TIME,
+    STIFFNESS,
+    Limit,
+)
+from analysis.checks import Real
+
+__all__ = [
+    "PER_ELEMENT",
+    "PER_MASS",
+    "Field",
+    "SCHEMA",
+    "FIELDS_BY_NAME",
+    "PER_MASS_LISTS",
+    "GAIN_NAMES",
+    "DISPLAYS",
+    "walk",
+    "path_of",
+]
+
+#: ``Field.length``: one value per mass (``n``) or per element (``n - 1``).
+PER_MASS = "one per mass"
+PER_ELEMENT = "one per element"
+
+#: The two display types (section III impedance display, section IV admittance display).
+DISPLAYS = ("impedance", "admittance")
+#: The API names of the couplings' and PD loop's gains (:class:`Profile` fields), in file order.
+GAIN_NAMES = ("kc", "bc", "mc", "bc_adm", "kp", "kd")
+
+_KINDS = ("object", "section", "number", "numbers", "integer", "string", "choice")
+
+
+@dataclass(frozen=True)
+class Field:
+    """One key of a profile file; its JSON path is the keys above it in :data:`SCHEMA`.
+
+    Parameters
+    ----------
+    key : str
+        The JSON key in the enclosing object.
+    kind : str
+        ``object`` (its ``children`` are the only keys allowed), ``section`` (validated by its
+        settings record; ``children`` declare only the keys the profile checks across sections),
+        ``number``, ``numbers`` (a list), ``integer``, ``string`` or ``choice`` (one of ``options``).
+    name : str or None
+        The API's name of the value (the ``field`` of a ValidationError raised for it).
+    rule : Limit or Real or None
+        The number rule: type, range and unit.
+    required : bool
+        The key must be present.
+    nonempty : bool
+        A string with a non-blank character.
+    length : str or None
+        :data:`PER_MASS` or :data:`PER_ELEMENT` for a list whose length follows the device.
+    empty_ok : bool
+        Such a list may also be empty (no friction).
+    options : tuple of str
+        The values a ``choice`` allows.
+    children : tuple of Field
+        The keys inside an ``object`` or ``section``.
+    blamed_for : tuple of str
+        Other API names reported at this key (a work limit that follows from it).
+    """
+
+    key: str
+    kind: str
+    name: str | None = None
+    rule: Limit | Real | None = None
+    required: bool = True
+    nonempty: bool = False
+    length: str | None = None
+    empty_ok: bool = False
+    options: tuple[str, ...] = ()
+    children: tuple[Field, ...] = ()
+    blamed_for: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.kind not in _KINDS:
+            raise ValueError(f"unknown kind {self.kind!r}")
+
+    @property
+    def keys(self) -> tuple[str, ...]:
+        """The keys of the children (the keys an ``object`` allows)."""
+        return tuple(c.key for c in self.children)
+
+    def child(self, key: str) -> Field:
+        """The child declared under ``key``.
+
+        Parameters
+        ----------
+        key : str
+            A JSON key inside this object.
+
+        Returns
+        -------
+        Field
+            Its declaration.
+
+        Raises
+        ------
+        KeyError
+            When no child has that key.
+        """
+        for c in self.children:
+            if c.key == key:
+                return c
+        raise KeyError(key)
+
+    @property
+    def range_text(self) -> str:
+        """The allowed range and unit of the rule (``""`` without a rule)."""
+        return "" if self.rule is None else self.rule.text
+
+    def count(self, n: int | None) -> int | None:
+        """The length a list must have on a device of ``n`` masses.
+
+        Parameters
+        ----------
+        n : int or None
+            The device's number of masses (``None``: not known yet).
+
+        Returns
+        -------
+        int or None
+            ``n`` or ``n - 1``; ``None`` for a list of any length.
+        """
+        if n is None or self.length is None:
+            return None
+        return n if self.length == PER_MASS else n - 1
+
+    def expected(self, n: int | None = None) -> str:
+        """What belongs at this key, as an error says it (kind, length, range and unit).
+
+        Parameters
+        ----------
+        n : int or None
+            The device's number of masses, for a list whose length follows it.
+
+        Returns
+        -------
+        str
+            E.g. ``"a number > 0 and finite, within the physical range [1e-06, 1] (s)"``.
+        """
+        if self.kind == "number":
+            return f"a number {self.range_text}".rstrip()
+        if self.kind == "numbers":
+            count = self.count(n)
+            if count is None:
+                text = "a list of numbers"
+            else:
+                per = f"{self.length}, {n} mass{'es' if n != 1 else ''}"
+                text = f"a list of exactly {count} value{'s' if count != 1 else ''} ({per})"
+            text += f", each {self.range_text}" if self.range_text else ""
+            return text + (", or an empty list" if self.empty_ok else "")
+        if self.kind == "integer":
+            return "an integer"
+        if self.kind == "string":
+            return "a non-empty string" if self.nonempty else "a string"
+        if self.kind == "choice":
+            return " or ".join(f'"{o}"' for o in self.options)
+        return "a JSON object"
+
+
+def _number(key: str, name: str, rule: Limit | Real, required: bool = True) -> Field:
+    return Field(key, "number", name=name, rule=rule, required=required)
+
+
+def _numbers(key: str, name: str, rule: Limit, length: str | None, required: bool = True) -> Field:
+    return Field(key, "numbers", name=name, rule=rule, length=length, required=required)
+
+
+#: The loader's rule for ``band.min`` (the device's own check adds the Nyquist frequency of its T).
+BAND_RULE = Real(lo=BAND_MIN.lo, report_float=True,
+                 allowed=f"> 0 and below Nyquist pi/T, within the physical range [{BAND_MIN.lo:g}, pi/T) "
+                         f"({BAND_MIN.unit})",
+                 not_real=f"a real number > 0 and below Nyquist pi/T ({BAND_MIN.unit})")
+
+#: The profile file (schema :data:`analysis.profiles.SCHEMA_VERSION`).
+SCHEMA = Field("$", "object", children=(
+    Field("schema_version", "integer"),
+    Field("name", "string", name="name", nonempty=True),
+    Field("notes", "string", name="notes", required=False),
+    Field("device", "object", name="device", children=(
+        _numbers("masses", "masses", MASS, None),
+        _numbers("stiffnesses", "stiffnesses", STIFFNESS, PER_ELEMENT),
+        _numbers("dampings", "dampings", LIMITS["dampings"], PER_ELEMENT, required=False),
+        _numbers("damping_ratios", "damping_ratios", DAMPING_RATIO, PER_ELEMENT, required=False),
+        _numbers("ground_dampings", "ground_dampings", GROUND_DAMPING, PER_MASS, required=False),
+        Field("sensor_element", "integer", name="sensor_element", required=False),
+    )),
+    _number("sample_time", "sample_time", SAMPLE_TIME),
+    Field("band", "object", required=False, children=(_number("min", "band_min", BAND_RULE),)),
+    Field("display", "choice", name="display", options=DISPLAYS),
+    Field("impedance_coupling", "object", children=(
+        _number("stiffness", "kc", LIMITS["kc"]), _number("damping", "bc", LIMITS["bc"]))),
+    Field("admittance_coupling", "object", children=(
+        _number("mass", "mc", LIMITS["mc"]), _number("damping", "bc_adm", LIMITS["bc_adm"]))),
+    Field("pd_gains", "object", children=(
+        _number("stiffness", "kp", LIMITS["kp"]), _number("damping", "kd", LIMITS["kd"]))),
+    Field("wall", "section", name="wall", required=False),
+    Field("observer", "section", name="observer", required=False),
+    Field("simulation", "section", name="simulation", required=False, children=(
+        Field("options", "section", required=False, children=(
+            Field("friction", "numbers", name="friction", length=PER_MASS, empty_ok=True,
+                  rule=Real(lo=0.0, unit="N")),
+        )),
+        Field("scenario", "section", required=False, children=(
+            Field("duration", "number", name="duration", blamed_for=("simulation steps", "simulation values")),
+        )),
+    )),
+    Field("identification", "section", name="identification", required=False),
+    Field("controller", "section", name="controller", required=False, children=(
+        Field("velocity_filter", "section", required=False, children=(Field("cutoff", "number", name="cutoff"),)),
+    )),
+))
+
+
+def walk(node: Field = SCHEMA, path: str = "$") -> Iterator[tuple[str, Field]]:
+    """Every field below ``node`` with its JSON path (``$.device.masses``), depth first."""
+    for c in node.children:
+        where = f"{path}.{c.key}"
+        yield where, c
+        yield from walk(c, where)
+
+
+def _by_name() -> dict[str, tuple[str, Field]]:
+    out: dict[str, tuple[str, Field]] = {}
+    for path, node in walk():
+        for name in (node.name, *node.blamed_for):
+            if name is not None:
+                if name in out:
+                    raise ValueError(f"the API name {name!r} is declared twice in the profile schema")
+                out[name] = (path, node)
+    return out
+
+
+#: API name (a ValidationError's ``field``) -> (JSON path, field), derived from :data:`SCHEMA`.
+FIELDS_BY_NAME: dict[str, tuple[str, Field]] = _by_name()
+
+#: The per-mass lists inside the optional sections, by JSON path (the device's own are read with it).
+PER_MASS_LISTS: tuple[tuple[str, Field], ...] = tuple(
+    (path, node) for path, node in walk() if node.length == PER_MASS and not path.startswith("$.device."))
+
+
+def path_of(name: str) -> str | None:
+    """The JSON path of the value the API calls ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A Device or Profile field (``"kc"``) or another name declared in :data:`SCHEMA`.
+
+    Returns
+    -------
+    str or None
+        E.g. ``"$.impedance_coupling.stiffness"``; ``None`` for a name the schema does not declare.
+    """
+    found = FIELDS_BY_NAME.get(name)
+    return None if found is None else found[0]
