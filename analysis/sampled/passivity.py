@@ -65,7 +65,29 @@ _VIRTUAL_DAMPING = Real(allowed="a finite real number (N s/m)")
 
 
 def virtual_wall(stiffness: float, damping: float, sample_time: float, delay_samples: int = 0) -> Callable:
-    """``H(z) = z^{-d} (K + B (1 - z^{-1})/T)`` as a function of complex ``z``."""
+    """``H(z) = z^{-d} (K + B (1 - z^{-1})/T)`` as a function of complex ``z``.
+
+    Parameters
+    ----------
+    stiffness : float
+        Wall stiffness ``K`` [N/m].
+    damping : float
+        Virtual damping ``B`` [N s/m] on the backward difference.
+    sample_time : float
+        Sample period ``T`` [s].
+    delay_samples : int, optional
+        Computation delay ``d`` in samples, at least 0.
+
+    Returns
+    -------
+    Callable
+        ``H(z)``: complex array of ``z`` to the force per position [N/m], same shape.
+
+    Raises
+    ------
+    ValidationError
+        When ``delay_samples`` is not an integer of at least 0.
+    """
     d = integer("delay_samples", delay_samples, 0)
 
     def H(z: np.ndarray) -> np.ndarray:
@@ -83,6 +105,26 @@ def required_damping(H: Callable[[np.ndarray], np.ndarray], sample_time: float, 
 
     Returns ``(b_required, w)``: the supremum over ``0 < w <= pi/T`` of the right-hand side
     and the frequency (rad/s) where it is attained (dense grid plus Brent refinement).
+
+    Parameters
+    ----------
+    H : Callable
+        The discrete controller ``H(z)`` [N/m] from sampled position to force, vectorized over
+        complex ``z`` (e.g. :func:`virtual_wall`).
+    sample_time : float
+        Sample period ``T`` [s], greater than 0.
+    points : int, optional
+        Points of the grid over ``0 < theta <= pi``.
+
+    Returns
+    -------
+    tuple of (float, float)
+        ``(b_required [N s/m], w [rad/s])``; ``w = 0`` when the supremum is the DC limit.
+
+    Raises
+    ------
+    ValidationError
+        When ``sample_time`` is not greater than 0.
     """
     T = _POS("sample_time", sample_time)
 
@@ -126,6 +168,33 @@ def passivity_limit(mass: float, damping: float, sample_time: float, virtual_dam
     (b - c)/a``, found on a dense grid and refined.  ``mass`` is validated but does not enter
     (the criterion is independent of it).  Returns NaN when no K >= 0 is passive (e.g.
     ``|B| >= b`` without delay).
+
+    Parameters
+    ----------
+    mass : float
+        Device mass ``m`` [kg], greater than 0 (validated only).
+    damping : float
+        Physical damping ``b`` [N s/m], at least 0.
+    sample_time : float
+        Sample period ``T`` [s], greater than 0.
+    virtual_damping : float, optional
+        Virtual damping ``B`` [N s/m], any finite sign.
+    delay_samples : int, optional
+        Computation delay ``d`` in samples, at least 0.
+    points : int, optional
+        Points of the grid over ``0 < theta <= pi`` before the refinement.
+    velocity_filter : VelocityFilter or None, optional
+        Filter ``H_f`` of the velocity estimate; ``None`` for the backward difference.
+
+    Returns
+    -------
+    float
+        ``K_max`` [N/m], or NaN when no ``K >= 0`` is passive.
+
+    Raises
+    ------
+    ValidationError
+        When a parameter is out of range.
     """
     _POS("mass", mass)
     b = _NONNEG("damping", damping)
@@ -170,6 +239,33 @@ def passivity_limits(mass: float, damping: float, sample_time: float, virtual_da
     ``r = Re{e^{-j(d+1) theta} H_f}`` on one grid of ``points`` for every B, then a second grid of
     ``points`` between the neighbours of each minimum (error ~ (grid step / points)^2); NaN
     where some ``a <= 0`` has ``c > b`` or the limit is negative, as :func:`passivity_limit`.
+
+    Parameters
+    ----------
+    mass : float
+        Device mass ``m`` [kg], greater than 0 (validated only).
+    damping : float
+        Physical damping ``b`` [N s/m], at least 0.
+    sample_time : float
+        Sample period ``T`` [s], greater than 0.
+    virtual_dampings : numpy.ndarray
+        Virtual dampings ``B`` [N s/m], shape (M,) (flattened).
+    delay_samples : int, optional
+        Computation delay ``d`` in samples, at least 0.
+    points : int, optional
+        Points of each of the two grids.
+    velocity_filter : VelocityFilter or None, optional
+        Filter ``H_f`` of the velocity estimate; ``None`` for the backward difference.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``K_max`` [N/m] for each B, shape (M,); NaN where no ``K >= 0`` is passive.
+
+    Raises
+    ------
+    ValidationError
+        When a parameter is out of range.
     """
     _POS("mass", mass)
     b = _NONNEG("damping", damping)
@@ -199,7 +295,30 @@ def passivity_limits(mass: float, damping: float, sample_time: float, virtual_da
 
 def passivity_closed_form(damping: float, sample_time: float, virtual_damping: float = 0.0,
                           delay_samples: int = 0) -> float:
-    """Closed forms of the Colgate-Schenkel limit: ``2(b - |B|)/T`` (d = 0), ``b/(T(d + 1/2))`` (B = 0)."""
+    """Closed forms of the Colgate-Schenkel limit: ``2(b - |B|)/T`` (d = 0), ``b/(T(d + 1/2))`` (B = 0).
+
+    Parameters
+    ----------
+    damping : float
+        Physical damping ``b`` [N s/m].
+    sample_time : float
+        Sample period ``T`` [s].
+    virtual_damping : float, optional
+        Virtual damping ``B`` [N s/m]; must be 0 when ``delay_samples > 0``.
+    delay_samples : int, optional
+        Computation delay ``d`` in samples, at least 0.
+
+    Returns
+    -------
+    float
+        ``K_max`` [N/m]; NaN when it would be negative (d = 0).
+
+    Raises
+    ------
+    ValidationError
+        When ``virtual_damping`` is not 0 with ``delay_samples > 0`` (no closed form), or
+        ``delay_samples`` is not an integer of at least 0.
+    """
     d = integer("delay_samples", delay_samples, 0)
     if d == 0:
         k = 2.0 * (damping - abs(virtual_damping)) / sample_time
@@ -212,7 +331,24 @@ def passivity_closed_form(damping: float, sample_time: float, virtual_damping: f
 
 def linear_stability_limit(damping: float, sample_time: float, virtual_damping: float = 0.0,
                            delay_samples: int = 0) -> float:
-    """``K_max ~ (b + B) / (T (d + 1/2))`` (Gil et al. 2004 for d = 0; Hulin et al. 2006 with delay)."""
+    """``K_max ~ (b + B) / (T (d + 1/2))`` (Gil et al. 2004 for d = 0; Hulin et al. 2006 with delay).
+
+    Parameters
+    ----------
+    damping : float
+        Physical damping ``b`` [N s/m].
+    sample_time : float
+        Sample period ``T`` [s].
+    virtual_damping : float, optional
+        Virtual damping ``B`` [N s/m].
+    delay_samples : int, optional
+        Computation delay ``d`` in samples, at least 0.
+
+    Returns
+    -------
+    float
+        The approximate stability limit ``K_max`` [N/m].
+    """
     d = integer("delay_samples", delay_samples, 0)
     return (damping + virtual_damping) / (sample_time * (d + 0.5))
 
@@ -223,6 +359,27 @@ def rigid_stability_polynomial(mass: float, damping: float, sample_time: float, 
 
     ``z^{d+1} (z - 1)(z - delta) + (K z + (B/T)(z - 1)) (alpha z + beta)``, from the ZOH
     transfer function ``(alpha z + beta)/((z-1)(z-delta))`` of ``1/(s (m s + b))``.
+
+    Parameters
+    ----------
+    mass : float
+        Device mass ``m`` [kg].
+    damping : float
+        Physical damping ``b`` [N s/m]; 0 for the double integrator.
+    sample_time : float
+        Sample period ``T`` [s].
+    stiffness : float
+        Wall stiffness ``K`` [N/m].
+    virtual_damping : float, optional
+        Virtual damping ``B`` [N s/m].
+    delay_samples : int, optional
+        Computation delay ``d`` in samples, at least 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        Polynomial coefficients in ``z``, highest power first, shape (d + 4,); the loop is
+        stable when every root lies inside the unit circle.
     """
     m, b, T = float(mass), float(damping), float(sample_time)
     K, B, d = float(stiffness), float(virtual_damping), integer("delay_samples", delay_samples, 0)
