@@ -50,7 +50,8 @@ def export_report(window: QWidget, path: str | None = None, page_size: str = "a4
         return False
     except Exception as err:  # noqa: BLE001 - shown to the user, never a crash of the app
         dlg.close()
-        QMessageBox.warning(window, "Export Report", f"Could not write {os.path.basename(path)}:\n{err}")
+        reason = err.strerror if isinstance(err, OSError) and err.strerror else err  # WriteError: the words
+        QMessageBox.warning(window, "Export Report", f"Could not write {os.path.basename(path)}:\n{reason}")
         return False
     finally:
         dlg.close()
