@@ -42,7 +42,31 @@ __all__ = ["ComparisonRun", "PassivityComparison", "passivity_comparison", "run_
 
 @dataclass(frozen=True)
 class ComparisonRun:
-    """One run of the comparison and its numbers (module docstring); energies in J, force in N."""
+    """One run of the comparison and its numbers (module docstring); energies in J, force in N.
+
+    Parameters
+    ----------
+    name : str
+        ``"wall"``, ``"wall + PC"`` or ``"coupled wall"``.
+    result : SimulationResult
+        The simulation.
+    verdict : str
+        The verdict's kind (:class:`~analysis.sampled.results.Verdict`).
+    peak_force : float
+        Largest ``|F_d|`` [N] (NaN samples ignored).
+    max_jump : float
+        Largest sample-to-sample jump of ``F_d`` [N].
+    spikes : int
+        Jumps above ``spike_fraction`` of the peak force.
+    penetration : float
+        Largest encoder reading past the wall [m], at least 0.
+    final_energy : float
+        Last finite energy absorbed by the digital side (``SimulationResult.energy``) [J]; NaN
+        when no sample is finite.
+    min_observed_energy : float
+        Least finite energy from encoder readings (``SimulationResult.energy_observed``) [J];
+        NaN when no sample is finite.
+    """
 
     name: str
     result: SimulationResult
@@ -57,7 +81,19 @@ class ComparisonRun:
 
 @dataclass(frozen=True)
 class PassivityComparison:
-    """The runs, the wall ``(K, B)``, the exact critical stiffness ``k_critical`` and the coupling."""
+    """The runs, the wall ``(K, B)``, the exact critical stiffness ``k_critical`` and the coupling.
+
+    Parameters
+    ----------
+    runs : tuple of ComparisonRun
+        ``"wall"``, ``"wall + PC"`` and ``"coupled wall"``, in this order.
+    wall : tuple of (float, float)
+        The wall's ``(K [N/m], B [N s/m])``.
+    k_critical : float
+        Exact critical stiffness ``k_c`` [N/m] of the hands-off god-object-wall loop.
+    coupling : tuple of (float, float)
+        The coupled wall's ``(k_c [N/m], b_c [N s/m])``.
+    """
 
     runs: tuple[ComparisonRun, ...]
     wall: tuple[float, float]
@@ -65,6 +101,18 @@ class PassivityComparison:
     coupling: tuple[float, float]
 
     def run(self, name: str) -> ComparisonRun:
+        """The run of a name.
+
+        Parameters
+        ----------
+        name : str
+            ``"wall"``, ``"wall + PC"`` or ``"coupled wall"``.
+
+        Returns
+        -------
+        ComparisonRun
+            The run (``StopIteration`` for an unknown name).
+        """
         return next(r for r in self.runs if r.name == name)
 
 
@@ -89,7 +137,34 @@ def passivity_comparison(device: Device, b: float = 10.0, factor: float = 1.5,
                          velocity_filter: VelocityFilter | None = None, push_force: float = 10.0,
                          duration: float = 1.0,
                          options: SimulationOptions | None = None) -> PassivityComparison:
-    """The three runs of the module docstring for the wall ``K = factor k_c(b)``, damping ``b``."""
+    """The three runs of the module docstring for the wall ``K = factor k_c(b)``, damping ``b``.
+
+    Parameters
+    ----------
+    device : Device
+        The device.
+    b : float, optional
+        The wall's damping ``B`` [N s/m]; ``k_c(b)`` is the critical stiffness with it.
+    factor : float, optional
+        The wall stiffness as a multiple of ``k_c(b)``.
+    coupling : tuple of (float, float), optional
+        ``(k_c [N/m], b_c [N s/m])`` of the coupled wall, e.g. designed by eq. (9).
+    delay_samples : int, optional
+        Computation delay in samples (critical stiffness and simulations).
+    velocity_filter : VelocityFilter or None, optional
+        Filter of the damping term's velocity estimate; ``None`` for the backward difference.
+    push_force : float, optional
+        Constant push holding the handle against the wall [N].
+    duration : float, optional
+        Simulated time of each run [s].
+    options : SimulationOptions or None, optional
+        Simulator options (``delay_samples`` replaced; passivity control set on the second run).
+
+    Returns
+    -------
+    PassivityComparison
+        The three runs, the wall and ``k_c(b)``.
+    """
     kcrit = critical_stiffness(device, b, delay_samples, velocity_filter=velocity_filter)
     K = factor * kcrit
     base = dataclasses.replace(options or SimulationOptions(), delay_samples=delay_samples)

@@ -20,6 +20,21 @@ class WorstCase:
     :func:`~analysis.sampled.loop.is_stable` of ``spectral_radius`` (at most 1 up to the
     stability tolerance; rigid-body modes at z = 1 count as 1, see
     :func:`analysis.sampled.loop.spectral_radius`).
+
+    Parameters
+    ----------
+    spectral_radius : float
+        The worst (largest) spectral radius.
+    termination : Termination
+        The termination attaining it.
+    index : int
+        Its index in ``terminations``.
+    stable : bool
+        Whether the worst case, hence every termination, is stable.
+    radii : numpy.ndarray
+        Spectral radius of each termination, shape (M,).
+    terminations : tuple of Termination
+        The M terminations of the sweep.
     """
 
     spectral_radius: float
@@ -36,6 +51,15 @@ class CriticalChart:
 
     ``kc`` is ``inf`` where no k_c up to the scan limit is unstable and ``0`` where the
     smallest scanned k_c is already unstable.
+
+    Parameters
+    ----------
+    bc : numpy.ndarray
+        Coupling dampings b_c [N s/m], shape (N,).
+    kc : numpy.ndarray
+        Largest stable coupling stiffness k_c [N/m] at each b_c, shape (N,).
+    delay_samples : int
+        Computation delay in samples.
     """
 
     bc: np.ndarray
@@ -48,6 +72,15 @@ class CriticalMassChart:
     """Exact smallest stable m_c against b_c (admittance display).
 
     ``mc`` is ``0`` where every scanned m_c is stable and ``inf`` where none is.
+
+    Parameters
+    ----------
+    bc : numpy.ndarray
+        Coupling dampings b_c [N s/m], shape (N,).
+    mc : numpy.ndarray
+        Smallest stable coupling mass m_c [kg] at each b_c, shape (N,).
+    delay_samples : int
+        Computation delay in samples.
     """
 
     bc: np.ndarray
@@ -57,7 +90,21 @@ class CriticalMassChart:
 
 @dataclass(frozen=True)
 class StabilityMap:
-    """Spectral radius over a grid of two parameters: ``spectral_radius[j, i]`` at ``(x[i], y[j])``."""
+    """Spectral radius over a grid of two parameters: ``spectral_radius[j, i]`` at ``(x[i], y[j])``.
+
+    Parameters
+    ----------
+    x_name : str
+        The parameter along ``x`` (a key of :data:`~analysis.sampled.sweeps.MAP_PARAMETERS`).
+    x : numpy.ndarray
+        Its values, shape (NX,), in its unit.
+    y_name : str
+        The parameter along ``y``.
+    y : numpy.ndarray
+        Its values, shape (NY,).
+    spectral_radius : numpy.ndarray
+        Spectral radii, shape (NY, NX).
+    """
 
     x_name: str
     x: np.ndarray
@@ -78,6 +125,20 @@ class Verdict:
     ``kind`` is ``"stable"``, ``"sustained oscillation"`` or ``"divergent"``; ``amplitude``
     the RMS of the detrended actuator position in the last two windows (m), ``threshold`` the
     amplitude below which motion counts as at rest.
+
+    Parameters
+    ----------
+    kind : str
+        ``"stable"``, ``"sustained oscillation"`` or ``"divergent"``.
+    amplitude_previous : float
+        RMS of the detrended actuator position in the second-last window [m] (NaN for a
+        non-finite run).
+    amplitude_last : float
+        The same in the last window [m].
+    threshold : float
+        Rest threshold [m]: ``max(2 encoder counts, 1 um)``.
+    reason : str
+        Why, in words.
     """
 
     kind: str
@@ -104,6 +165,50 @@ class SimulationResult:
     observer's energy after each sample's update (equal to ``energy_observed``) and
     ``pc_damping`` the controller's added damping ``alpha`` (N s/m; zeros without control);
     both are ``None`` otherwise (see :mod:`analysis.sampled.actuation`).
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Sample instants [s], shape (K,).
+    positions : numpy.ndarray
+        Positions of the n masses [m], shape (K, n); handle first, actuator last.
+    velocities : numpy.ndarray
+        Velocities of the masses [m/s], shape (K, n).
+    encoder : numpy.ndarray
+        Encoder reading [m], shape (K,).
+    f_meas : numpy.ndarray
+        Force-gauge reading [N], shape (K,).
+    f_h : numpy.ndarray
+        Force of the human on the handle [N], shape (K,).
+    f_d : numpy.ndarray
+        Actuator force held from each sample [N], shape (K,).
+    f_e : numpy.ndarray
+        Environment force [N], shape (K,).
+    x_e : numpy.ndarray
+        Environment object (or x_com) position [m], shape (K,).
+    energy : numpy.ndarray
+        Energy absorbed by the digital side through the actuator port [J], cumulative, shape (K,).
+    energy_observed : numpy.ndarray
+        The same from encoder readings [J], shape (K,).
+    energy_human : numpy.ndarray
+        Work of the human on the handle [J], cumulative, shape (K,).
+    contact : numpy.ndarray
+        Whether the environment is on the wall, bool, shape (K,).
+    verdict : Verdict
+        The detector's verdict (:func:`~analysis.sampled.simulator.detect`).
+    substeps : int
+        Sub-steps per sample (1 without friction).
+    events : int
+        Dyadic splits of sub-steps at friction regime changes.
+    passivity_energy : numpy.ndarray or None, optional
+        The passivity observer's energy [J], shape (K,); ``None`` without the observer.
+    pc_damping : numpy.ndarray or None, optional
+        The passivity controller's damping ``alpha`` [N s/m], shape (K,); ``None`` without the
+        observer.
+
+    Notes
+    -----
+    After a divergence with friction the signals are NaN.
     """
 
     t: np.ndarray

@@ -70,6 +70,40 @@ class SimulationOptions(SettingsRecord):
     ``passivity_control`` (implies the observer) adds Hannaford & Ryu's variable damping that
     removes an observed energy excess (conventions in :mod:`analysis.sampled.actuation`);
     ``passivity_max_damping`` (N s/m; 0 = off, Hannaford & Ryu's unbounded PC) caps that damping.
+
+    Parameters
+    ----------
+    substeps : int, optional
+        Sub-steps per sample for the friction forces, 1 to 4096.
+    encoder_resolution : float, optional
+        Encoder quantum [m], at least 0 (0 = off).
+    force_resolution : float, optional
+        Force-gauge quantum [N], at least 0 (0 = off).
+    friction : tuple of float, optional
+        Coulomb force [N] on each mass, each at least 0, shape (n,) or empty (none).
+    stick_velocity : float, optional
+        Width of the stick band [m/s], greater than 0.
+    force_continuous : float, optional
+        Continuous (RMS) force limit [N], greater than 0; ``inf`` = off.
+    force_peak : float, optional
+        Instantaneous force limit [N], at least ``force_continuous``; ``inf`` = off.
+    thermal_time_constant : float, optional
+        Time constant of the I^2 t model [s], greater than 0.
+    delay_samples : int, optional
+        Computation delay in samples, 0 to 1000.
+    implementation_delay : bool, optional
+        The one-sample delay between coupling and environment.
+    passivity_observer : bool, optional
+        Record the energy into the virtual environment port.
+    passivity_control : bool, optional
+        Hannaford & Ryu's passivity controller (implies the observer).
+    passivity_max_damping : float, optional
+        Cap of the controller's damping [N s/m], at least 0 (0 = unbounded).
+
+    Raises
+    ------
+    ValidationError
+        When a value is out of range, or ``force_peak < force_continuous``.
     """
 
     record_name = "simulation options"
@@ -118,6 +152,16 @@ def hbfd_options(**changes) -> SimulationOptions:
 
     The friction values (1 N on the stage, 0.5 N on the motor) are illustrative: the paper
     notes Coulomb friction but gives no value.
+
+    Parameters
+    ----------
+    **changes
+        Fields of :class:`SimulationOptions` that replace the HBFD's values.
+
+    Returns
+    -------
+    SimulationOptions
+        The HBFD's options with ``changes``.
     """
     base = dict(encoder_resolution=15e-6, force_resolution=0.05, friction=(0.0, 1.0, 0.0, 0.5),
                 force_continuous=100.0, force_peak=400.0)
@@ -137,6 +181,44 @@ class Scenario(SettingsRecord):
     ``push_force`` on the handle from ``push_start`` to ``min(push_end, release_time)``.
     Initial state: every mass at ``initial_position`` with ``initial_velocity``, at rest
     otherwise.  ``duration`` in s.
+
+    Parameters
+    ----------
+    name : str, optional
+        Name of the scenario.
+    causality : str, optional
+        ``"impedance"`` (penalty) or ``"admittance"`` (god-object).
+    wall : bool, optional
+        Whether a unilateral wall occupies ``x > wall_position``.
+    wall_position : float, optional
+        Wall surface [m].
+    wall_stiffness : float, optional
+        Penalty wall stiffness ``k_obj`` [N/m], 0 to 1e9.
+    wall_damping : float, optional
+        Penalty wall damping ``b_obj`` [N s/m], 0 to 1e8.
+    object_mass : float, optional
+        God-object/object mass ``m_e`` [kg], 1e-6 to 1e3.
+    grasp : Grasp or dict, optional
+        The human grasp until ``release_time`` (a dict is read with ``Grasp.from_dict``).
+    release_time : float, optional
+        When grasp and push are removed [s], at least 0; ``inf`` = never.
+    push_force : float, optional
+        Push on the handle [N], positive toward the wall.
+    push_start : float, optional
+        Start of the push [s], at least 0.
+    push_end : float, optional
+        End of the push [s], at least ``push_start``; ``inf`` = never.
+    initial_position : float, optional
+        Initial position of every mass [m].
+    initial_velocity : float, optional
+        Initial velocity of every mass [m/s].
+    duration : float, optional
+        Simulated time [s], in (0, 3600].
+
+    Raises
+    ------
+    ValidationError
+        When a value is out of range or of the wrong type.
     """
 
     record_name = "scenario"
@@ -201,6 +283,19 @@ SCENARIOS: dict[str, Scenario] = {
 
 
 def scenario(name: str, **changes) -> Scenario:
-    """A preset from :data:`SCENARIOS`, optionally modified (e.g. ``causality="admittance"``)."""
+    """A preset from :data:`SCENARIOS`, optionally modified (e.g. ``causality="admittance"``).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`SCENARIOS`.
+    **changes
+        Fields of :class:`Scenario` to replace.
+
+    Returns
+    -------
+    Scenario
+        The preset, or a modified copy.
+    """
     choice("scenario", name, SCENARIOS, allowed=", ".join(SCENARIOS))
     return SCENARIOS[name].replace(**changes) if changes else SCENARIOS[name]
