@@ -204,7 +204,24 @@ class _Trace:
 
 
 class Simulator:
-    """Precomputed simulator of one device, loop and scenario (see module docstring)."""
+    """Precomputed simulator of one device, loop and scenario (see module docstring).
+
+    Parameters
+    ----------
+    device : Device
+        The chain of ``n`` masses and its sample time.
+    spec : LoopSpec
+        Display, gains, delays and velocity filter.
+    scenario : Scenario
+        What the human and the virtual world do.
+    options : SimulationOptions or None, optional
+        Nonlinear effects and numerics (all off by default).
+
+    Raises
+    ------
+    ValidationError
+        When ``options.friction`` is given but not one value per mass.
+    """
 
     def __init__(self, device: Device, spec: LoopSpec, scenario: Scenario, options: SimulationOptions | None = None):
         self.device, self.spec, self.scenario = device, spec, scenario
@@ -234,7 +251,18 @@ class Simulator:
         self.cy, self.cf = sensor_rows(device)
 
     def run(self, duration: float | None = None) -> SimulationResult:
-        """Simulate ``duration`` s (default the scenario's) and classify the run (:func:`detect`)."""
+        """Simulate ``duration`` s (default the scenario's) and classify the run (:func:`detect`).
+
+        Parameters
+        ----------
+        duration : float or None, optional
+            Simulated time [s], greater than 0; ``None`` for the scenario's.
+
+        Returns
+        -------
+        SimulationResult
+            The signals at the sample instants and the verdict.
+        """
         sc, T = self.scenario, self.device.sample_time
         D = sc.duration if duration is None else positive("duration", duration, "s")
         trace = _Trace(check_simulation_size(D, T, self.substeps, self.device.n), self.device.n)
@@ -249,7 +277,14 @@ class Simulator:
         return dataclasses.replace(res, passivity_energy=actuator.energy, pc_damping=actuator.damping)
 
     def initial_state(self) -> np.ndarray:
-        """``(X, F_d, F_ext, 1)`` with every mass at the scenario's initial position and velocity."""
+        """``(X, F_d, F_ext, 1)`` with every mass at the scenario's initial position and velocity.
+
+        Returns
+        -------
+        numpy.ndarray
+            The augmented state, shape (2n + 3,): positions [m], velocities [m/s], ``F_d = 0``,
+            ``F_ext = 0`` [N] and the constant 1.
+        """
         n, sc = self.device.n, self.scenario
         z = np.zeros(2 * n + 3)
         z[:n] = sc.initial_position
@@ -258,7 +293,18 @@ class Simulator:
         return z
 
     def hand(self, tk: float) -> tuple[Grasp, float]:
-        """The human's grasp and push force at time ``tk`` (see :class:`Scenario`)."""
+        """The human's grasp and push force at time ``tk`` (see :class:`Scenario`).
+
+        Parameters
+        ----------
+        tk : float
+            Time [s].
+
+        Returns
+        -------
+        tuple of (Grasp, float)
+            The grasp (hands-off after the release) and the push [N] (0 outside the push).
+        """
         sc = self.scenario
         released = tk >= sc.release_time
         grasp = HANDS_OFF if released else sc.grasp
@@ -266,7 +312,19 @@ class Simulator:
         return grasp, push
 
     def sample(self, z: np.ndarray) -> tuple[float, float]:
-        """Encoder and force gauge at state ``z``, quantized as the options say."""
+        """Encoder and force gauge at state ``z``, quantized as the options say.
+
+        Parameters
+        ----------
+        z : numpy.ndarray
+            Augmented state ``(X, F_d, F_ext, 1)``, shape (2n + 3,).
+
+        Returns
+        -------
+        tuple of (float, float)
+            Encoder reading [m] (truncated toward minus infinity) and gauge reading [N]
+            (rounded).
+        """
         X = z[:2 * self.device.n]
         res_x, res_f = self.options.encoder_resolution, self.options.force_resolution
         y = float(self.cy @ X)
@@ -303,7 +361,22 @@ class Simulator:
 
 
 def detect(t: np.ndarray, x: np.ndarray, encoder_resolution: float = 0.0) -> Verdict:
-    """Classify a run from the actuator position (see module docstring)."""
+    """Classify a run from the actuator position (see module docstring).
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Sample instants [s], shape (K,).
+    x : numpy.ndarray
+        Actuator position [m], shape (K,).
+    encoder_resolution : float, optional
+        Encoder quantum [m] (sets the rest threshold); 0 = ideal encoder.
+
+    Returns
+    -------
+    Verdict
+        ``"stable"``, ``"sustained oscillation"`` or ``"divergent"``, with its numbers.
+    """
     thr = max(2.0 * encoder_resolution, 1e-6)
     if not np.all(np.isfinite(x)) or np.max(np.abs(x)) > 1.0:
         return Verdict("divergent", math.nan, math.nan, thr, "non-finite or |x| > 1 m")
@@ -339,6 +412,36 @@ def simulate(profile_or_device, scenario: Scenario | str, duration: float | None
     admittance display, (8 kg, 400 N s/m) with ``k_p, k_d = 50 kN/m, 100 N s/m``.
     Delays and the passivity observer/controller come from ``options``; ``velocity_filter``
     filters the controller's damping term (:mod:`analysis.sampled.filtered`).
+
+    Parameters
+    ----------
+    profile_or_device : Profile or Device
+        A profile (device, display and couplings taken from it) or a bare device.
+    scenario : Scenario or str
+        A scenario or a key of :data:`~analysis.sampled.scenarios.SCENARIOS`.
+    duration : float or None, optional
+        Simulated time [s]; ``None`` for the scenario's.
+    display : str or None, optional
+        ``"impedance"`` or ``"admittance"``; ``None`` for the profile's (impedance for a device).
+    coupling : tuple of (float, float) or None, optional
+        ``(k_c [N/m], b_c [N s/m])`` or ``(m_c [kg], b_c [N s/m])``; ``None`` for the default.
+    pd : tuple of (float, float) or None, optional
+        ``(k_p [N/m], k_d [N s/m])`` of the admittance display; ``None`` for the default.
+    options : SimulationOptions or None, optional
+        Nonlinear effects, delays and passivity control (all off by default).
+    velocity_filter : VelocityFilter or None, optional
+        Filter of the damping term's velocity estimate; ``None`` for the backward difference.
+
+    Returns
+    -------
+    SimulationResult
+        The signals at the sample instants and the verdict.
+
+    Raises
+    ------
+    ValidationError
+        When ``scenario`` is neither a Scenario nor a preset name, ``profile_or_device`` is
+        neither a profile nor a device, or a setting is out of range.
     """
     from analysis.sampled.scenarios import scenario as preset
 
