@@ -29,7 +29,7 @@ from analysis.study import (
     scenario_title,
     simulation,
     simulation_section,
-    stability_map,
+    stability_map_result,
 )
 from app.report.identify_section import identification_part
 from app.report.model import (
@@ -144,12 +144,12 @@ def _sampling(profile: Profile) -> Part:
 
 
 def _sampled(profile: Profile) -> Part:
-    """The app's sampled-data stability map (:func:`analysis.study.stability_map`, its default
+    """The app's sampled-data stability map (:func:`analysis.study.stability_map_result`, its default
     axes and ranges for the display) and the profile's scenario."""
     if profile.simulation is None:
         return Part()
     params = map_params(profile)
-    smap = stability_map(profile, params)
+    smap = stability_map_result(profile, params)
     sec = simulation_section(profile)
     opt, sc = sec.options, sec.scenario
     out = simulation(profile)

@@ -21,7 +21,7 @@ from analysis.study import (
     profile_trials,
     trial_score,
     region_wall,
-    zwidth_region,
+    zwidth_region_result,
 )
 from app.report.model import Numbers, Part, Row, Section
 
@@ -35,7 +35,7 @@ def zwidth_results(profile: Profile) -> dict[str, Any]:
     ``zwidth_study``).
 
     A trials file that cannot be read is reported under ``zwidth_trials_error``, not raised."""
-    region = zwidth_region(profile)
+    region = zwidth_region_result(profile)
     res: dict[str, Any] = {"zwidth_region": region, "zwidth_optimum": filter_optimum(profile)}
     try:
         trials = profile_trials(profile)
