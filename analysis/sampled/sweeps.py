@@ -75,7 +75,25 @@ CROSSING_RTOL = 1e-12
 
 def radii(device: Device, spec: LoopSpec, terminations: Sequence[Termination],
           overrides: dict[str, np.ndarray] | None = None) -> np.ndarray:
-    """Spectral radius of the closed loop for each termination (batched)."""
+    """Spectral radius of the closed loop for each termination (batched).
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    spec : LoopSpec
+        Display, gains, delays and velocity filter.
+    terminations : sequence of Termination
+        The M terminations, of either causality.
+    overrides : dict of str to numpy.ndarray, optional
+        Controller constants per termination (``"kc"``, ``"bc"``, ``"mc"``, ``"kp"``, ``"kd"``,
+        ``"kobj"``, ``"bobj"``, ``"me"``), each of length M.
+
+    Returns
+    -------
+    numpy.ndarray
+        Spectral radii, shape (M,).
+    """
     terms = list(terminations)
     out = np.empty(len(terms))
     if not terms:
@@ -102,6 +120,35 @@ def worst_case(device: Device, display: str = "impedance", coupling: tuple[float
     Default sweep (:func:`analysis.sampled.terminations.default_terminations`): hands-off to a rigid
     grasp (64 grasps) times free motion to rigid wall in both environment causalities (13).
     ``velocity_filter`` filters the damping term's velocity (default the backward difference).
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    display : str, optional
+        ``"impedance"`` or ``"admittance"``.
+    coupling : tuple of (float, float), optional
+        ``(k_c [N/m], b_c [N s/m])`` or ``(m_c [kg], b_c [N s/m])``.
+    terminations : sequence of Termination or None, optional
+        The sweep; ``None`` for the default 832.
+    pd : tuple of (float, float), optional
+        ``(k_p [N/m], k_d [N s/m])`` of the admittance display's position loop.
+    delay_samples : int, optional
+        Computation delay in samples.
+    implementation_delay : bool, optional
+        The one-sample delay between coupling and environment.
+    velocity_filter : VelocityFilter or None, optional
+        Filter of the damping term's velocity estimate; ``None`` for the backward difference.
+
+    Returns
+    -------
+    WorstCase
+        The worst spectral radius, its termination and every radius.
+
+    Raises
+    ------
+    ValidationError
+        When ``terminations`` is empty, or a setting of the loop is out of range.
     """
     spec = LoopSpec(display, coupling, pd, delay_samples, implementation_delay, velocity_filter)
     terms = tuple(default_terminations() if terminations is None else terminations)
@@ -215,6 +262,30 @@ def critical_stiffness(device: Device, bc: float, delay_samples: int = 0, *, env
     module docstring), ``inf`` if none below ``k_range[1]``, ``0.0`` if already unstable at
     ``k_range[0]``.  ``velocity_filter`` filters the coupling's damping term
     (:mod:`analysis.sampled.filtered`; default ``None``, the backward difference).
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    bc : float
+        Coupling damping b_c [N s/m], at least 0.
+    delay_samples : int, optional
+        Computation delay in samples.
+    environment : Environment or None, optional
+        The environment; ``None`` for the god-object wall.
+    grasp : Grasp, optional
+        The human grasp (hands-off by default).
+    implementation_delay : bool, optional
+        The one-sample delay between coupling and environment.
+    k_range : tuple of (float, float), optional
+        The scanned k_c [N/m], ``(low, high)``.
+    velocity_filter : VelocityFilter or None, optional
+        Filter of the damping term's velocity estimate; ``None`` for the backward difference.
+
+    Returns
+    -------
+    float
+        The largest stable k_c [N/m]; ``inf`` or ``0.0`` at the ends of ``k_range``.
     """
     nonnegative("bc", bc, "N s/m")
     env = god_object_wall() if environment is None else environment
@@ -242,7 +313,29 @@ def critical_stiffness_chart(device: Device, bc_values, delay_samples: int = 0, 
                              cancelled: Callable[[], bool] | None = None, **kwargs) -> CriticalChart | None:
     """:func:`critical_stiffness` over a list of b_c (overlay for the two-port design chart).
 
-    ``progress(done, total)`` after each b_c; ``None`` when ``cancelled()`` turns true."""
+    ``progress(done, total)`` after each b_c; ``None`` when ``cancelled()`` turns true.
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    bc_values : array_like
+        Coupling dampings b_c [N s/m], shape (N,) (flattened).
+    delay_samples : int, optional
+        Computation delay in samples.
+    progress : callable, optional
+        ``progress(done, total)``, called after each b_c.
+    cancelled : callable, optional
+        ``cancelled() -> bool``, asked before each b_c.
+    **kwargs
+        Keyword arguments of :func:`critical_stiffness` (``environment``, ``grasp``,
+        ``implementation_delay``, ``k_range``, ``velocity_filter``).
+
+    Returns
+    -------
+    CriticalChart or None
+        The k_c [N/m] of each b_c, shape (N,); ``None`` when cancelled.
+    """
     bcs = np.asarray(bc_values, float).reshape(-1)
     kcs = _each(bcs, lambda b: critical_stiffness(device, b, delay_samples, **kwargs), progress, cancelled)
     return None if kcs is None else CriticalChart(bc=bcs, kc=kcs, delay_samples=int(delay_samples))
@@ -259,6 +352,32 @@ def critical_mass(device: Device, bc: float, pd: tuple[float, float] = (50e3, 10
     Scans m_c downward from ``m_range[1]``; returns ``0.0`` if nothing down to ``m_range[0]`` is
     unstable and ``inf`` if ``m_range[1]`` already is.  ``velocity_filter`` filters the PD
     loop's derivative term (default ``None``, the backward difference).
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    bc : float
+        Coupling damping b_c [N s/m], greater than 0.
+    pd : tuple of (float, float), optional
+        ``(k_p [N/m], k_d [N s/m])`` of the position loop.
+    delay_samples : int, optional
+        Computation delay in samples.
+    environment : Environment or None, optional
+        The environment; ``None`` for free motion (penalty causality).
+    grasp : Grasp, optional
+        The human grasp (the rigid grasp by default).
+    implementation_delay : bool, optional
+        The one-sample delay between coupling and environment.
+    m_range : tuple of (float, float), optional
+        The scanned m_c [kg], ``(low, high)``.
+    velocity_filter : VelocityFilter or None, optional
+        Filter of the damping term's velocity estimate; ``None`` for the backward difference.
+
+    Returns
+    -------
+    float
+        The smallest stable m_c [kg]; ``0.0`` or ``inf`` at the ends of ``m_range``.
     """
     positive("bc", bc, "N s/m")
     env = free_motion("impedance") if environment is None else environment
@@ -272,7 +391,31 @@ def critical_mass_chart(device: Device, bc_values, pd: tuple[float, float] = (50
                         cancelled: Callable[[], bool] | None = None, **kwargs) -> CriticalMassChart | None:
     """:func:`critical_mass` over a list of b_c (overlay for the admittance design chart).
 
-    ``progress(done, total)`` after each b_c; ``None`` when ``cancelled()`` turns true."""
+    ``progress(done, total)`` after each b_c; ``None`` when ``cancelled()`` turns true.
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    bc_values : array_like
+        Coupling dampings b_c [N s/m], shape (N,) (flattened).
+    pd : tuple of (float, float), optional
+        ``(k_p [N/m], k_d [N s/m])`` of the position loop.
+    delay_samples : int, optional
+        Computation delay in samples.
+    progress : callable, optional
+        ``progress(done, total)``, called after each b_c.
+    cancelled : callable, optional
+        ``cancelled() -> bool``, asked before each b_c.
+    **kwargs
+        Keyword arguments of :func:`critical_mass` (``environment``, ``grasp``,
+        ``implementation_delay``, ``m_range``, ``velocity_filter``).
+
+    Returns
+    -------
+    CriticalMassChart or None
+        The m_c [kg] of each b_c, shape (N,); ``None`` when cancelled.
+    """
     bcs = np.asarray(bc_values, float).reshape(-1)
     mcs = _each(bcs, lambda b: critical_mass(device, b, pd, delay_samples, **kwargs), progress, cancelled)
     return None if mcs is None else CriticalMassChart(bc=bcs, mc=mcs, delay_samples=int(delay_samples))
@@ -297,6 +440,40 @@ def stability_map(device: Device, x: tuple[str, Sequence[float]], y: tuple[str, 
     ``("kc", ...)`` and ``("kobj", ...)``.  The other parameters come from ``coupling``, ``pd``
     and ``termination`` (default: hands-off and the paper's penalty wall for an impedance
     display; rigid grasp and free motion for an admittance display).
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    x : tuple of (str, sequence of float)
+        The parameter along x and its NX values, in its unit.
+    y : tuple of (str, sequence of float)
+        The parameter along y and its NY values.
+    display : str, optional
+        ``"impedance"`` or ``"admittance"``.
+    coupling : tuple of (float, float), optional
+        ``(k_c [N/m], b_c [N s/m])`` or ``(m_c [kg], b_c [N s/m])``.
+    pd : tuple of (float, float), optional
+        ``(k_p [N/m], k_d [N s/m])`` of the admittance display's position loop.
+    termination : Termination or None, optional
+        The grasp and environment; ``None`` for the display's default termination.
+    delay_samples : int, optional
+        Computation delay in samples.
+    implementation_delay : bool, optional
+        The one-sample delay between coupling and environment.
+    velocity_filter : VelocityFilter or None, optional
+        Filter of the damping term's velocity estimate; ``None`` for the backward difference.
+
+    Returns
+    -------
+    StabilityMap
+        The spectral radii, shape (NY, NX).
+
+    Raises
+    ------
+    ValidationError
+        When a name is not in :data:`MAP_PARAMETERS`, both names are the same, the grid has more
+        than ``MAX_MAP_POINTS`` points, or a setting of the loop is out of range.
     """
     (xn, xv), (yn, yv) = x, y
     for name in (xn, yn):
