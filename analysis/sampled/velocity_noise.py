@@ -63,7 +63,21 @@ DEFAULT_FORCE_NOISE = 0.1
 
 @dataclass(frozen=True)
 class VelocityNoise:
-    """The noise of a velocity estimate: ``gain`` g (1/s), ``velocity_rms`` = q g/sqrt(12) (m/s)."""
+    """The noise of a velocity estimate: ``gain`` g (1/s), ``velocity_rms`` = q g/sqrt(12) (m/s).
+
+    Parameters
+    ----------
+    velocity_filter : VelocityFilter
+        The velocity estimate's filter (the backward difference for none).
+    sample_time : float
+        Sample period ``T`` [s].
+    encoder_resolution : float
+        Encoder resolution ``q`` at the handle [m].
+    gain : float
+        Noise gain ``g`` [1/s] (:func:`noise_gain`).
+    velocity_rms : float
+        Rms velocity noise ``sigma_v = q g/sqrt(12)`` [m/s].
+    """
 
     velocity_filter: VelocityFilter
     sample_time: float
@@ -72,11 +86,33 @@ class VelocityNoise:
     velocity_rms: float
 
     def force_rms(self, b: np.ndarray | float) -> np.ndarray:
-        """The damping's force noise ``B sigma_v`` (N rms) at wall damping ``b`` (N s/m)."""
+        """The damping's force noise ``B sigma_v`` (N rms) at wall damping ``b`` (N s/m).
+
+        Parameters
+        ----------
+        b : float or numpy.ndarray
+            Wall damping ``B`` [N s/m], any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            Force noise [N rms], the shape of ``b``.
+        """
         return np.asarray(b, float) * self.velocity_rms
 
     def damping_limit(self, force_noise: float = DEFAULT_FORCE_NOISE) -> float:
-        """The largest wall damping whose force noise is within ``force_noise`` (N s/m)."""
+        """The largest wall damping whose force noise is within ``force_noise`` (N s/m).
+
+        Parameters
+        ----------
+        force_noise : float, optional
+            Force-noise tolerance ``F_noise`` [N rms], 1e-6 to 1e3.
+
+        Returns
+        -------
+        float
+            ``F_noise/sigma_v`` [N s/m].
+        """
         return FORCE_NOISE("force_noise", force_noise) / self.velocity_rms
 
 
@@ -97,6 +133,18 @@ def noise_gain(velocity_filter: VelocityFilter | None, sample_time: float) -> fl
 
     ``g^2`` is the sum of the squared impulse response, from the discrete Lyapunov equation of
     the estimate's realization.  ``None`` is the backward difference (``g = sqrt(2)/T``).
+
+    Parameters
+    ----------
+    velocity_filter : VelocityFilter or None
+        The velocity estimate's filter ``H_f``; ``None`` for the backward difference.
+    sample_time : float
+        Sample period ``T`` [s], 1e-6 to 1.
+
+    Returns
+    -------
+    float
+        The noise gain ``g`` [1/s].
     """
     T = SAMPLE_TIME("sample_time", sample_time)
     vf = BACKWARD if velocity_filter is None else velocity_filter
@@ -108,7 +156,22 @@ def noise_gain(velocity_filter: VelocityFilter | None, sample_time: float) -> fl
 
 def estimate_noise(velocity_filter: VelocityFilter | None, sample_time: float,
                    encoder_resolution: float) -> VelocityNoise:
-    """The rms velocity noise of the estimate for an encoder of resolution ``q`` (m)."""
+    """The rms velocity noise of the estimate for an encoder of resolution ``q`` (m).
+
+    Parameters
+    ----------
+    velocity_filter : VelocityFilter or None
+        The velocity estimate's filter ``H_f``; ``None`` for the backward difference.
+    sample_time : float
+        Sample period ``T`` [s], 1e-6 to 1.
+    encoder_resolution : float
+        Encoder resolution ``q`` at the handle [m], 1e-9 to 1e-2.
+
+    Returns
+    -------
+    VelocityNoise
+        The noise gain and the rms velocity noise.
+    """
     q = ENCODER_RESOLUTION("encoder_resolution", encoder_resolution)
     g = noise_gain(velocity_filter, sample_time)
     return VelocityNoise(velocity_filter=BACKWARD if velocity_filter is None else velocity_filter,
@@ -122,6 +185,27 @@ def noise_limited_damping(velocity_filter: VelocityFilter | None, sample_time: f
 
     ``inf`` when ``encoder_resolution`` is ``None`` (the criterion is off; then ``force_noise``
     must be ``None`` too); ``force_noise`` ``None`` is :data:`DEFAULT_FORCE_NOISE`.
+
+    Parameters
+    ----------
+    velocity_filter : VelocityFilter or None
+        The velocity estimate's filter ``H_f``; ``None`` for the backward difference.
+    sample_time : float
+        Sample period ``T`` [s], 1e-6 to 1.
+    encoder_resolution : float or None
+        Encoder resolution ``q`` at the handle [m]; ``None`` turns the criterion off.
+    force_noise : float or None, optional
+        Force-noise tolerance [N rms]; ``None`` for :data:`DEFAULT_FORCE_NOISE`.
+
+    Returns
+    -------
+    float
+        The largest wall damping [N s/m]; ``inf`` when the criterion is off.
+
+    Raises
+    ------
+    ValidationError
+        When ``force_noise`` is given without ``encoder_resolution``, or a value is out of range.
     """
     if encoder_resolution is None:
         if force_noise is not None:
