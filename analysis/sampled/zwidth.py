@@ -87,6 +87,34 @@ class ZWidthRegion:
     :func:`region_area` (the optimizer uses :data:`OPTIMIZER_AREA`).  ``b_noise``: the
     noise-limited damping of the noise criterion (N s/m; ``inf`` when it is off), above which
     ``k_max`` is 0; ``force_noise``: its tolerance (N rms; ``None`` when off).
+
+    Parameters
+    ----------
+    b : numpy.ndarray
+        Wall dampings B [N s/m], strictly increasing, shape (N,).
+    k_max : numpy.ndarray
+        Largest stable K [N/m] at each B, shape (N,).
+    k_passive : numpy.ndarray
+        Largest passive K [N/m] of the rigid-body device, shape (N,); NaN where none or not
+        computed.
+    k_twoport : numpy.ndarray
+        The eq. (9) limit [N/m], shape (N,); NaN when not computed or infeasible.
+    area_linear : float
+        ``int K_max dB`` [N^2 s/m^2].
+    area_log : float
+        ``int log10(K_max/K_floor) d log10 B`` [decades^2].
+    delay_samples : int
+        Computation delay in samples.
+    velocity_filter : VelocityFilter
+        The velocity estimate's filter (the backward difference for none).
+    k_floor : float
+        Lowest scanned K [N/m] (``k_range[0]``).
+    k_ceiling : float
+        Highest scanned K [N/m] (``k_range[1]``).
+    b_noise : float, optional
+        Noise-limited damping [N s/m]; ``inf`` when the criterion is off.
+    force_noise : float or None, optional
+        Force-noise tolerance [N rms]; ``None`` when the criterion is off.
     """
 
     b: np.ndarray
@@ -103,11 +131,35 @@ class ZWidthRegion:
     force_noise: float | None = None
 
     def stable(self, b: float, k: float) -> bool:
-        """Whether ``(b, k)`` lies in the region (K_max interpolated linearly in log B)."""
+        """Whether ``(b, k)`` lies in the region (K_max interpolated linearly in log B).
+
+        Parameters
+        ----------
+        b : float
+            Wall damping B [N s/m].
+        k : float
+            Wall stiffness K [N/m].
+
+        Returns
+        -------
+        bool
+            True when ``k <= K_max(b)``; False outside the computed B range.
+        """
         return bool(k <= self.k_limit(np.array([b]))[0])
 
     def k_limit(self, b: np.ndarray) -> np.ndarray:
-        """``K_max`` at ``b`` (linear interpolation in log B; NaN outside the computed range)."""
+        """``K_max`` at ``b`` (linear interpolation in log B; NaN outside the computed range).
+
+        Parameters
+        ----------
+        b : numpy.ndarray
+            Wall dampings B [N s/m], any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``K_max`` [N/m], the shape of ``b``.
+        """
         b = np.asarray(b, float)
         lb, grid = np.log(np.maximum(b, 1e-300)), np.log(np.maximum(self.b, 1e-300))
         out = np.interp(lb, grid, self.k_max)
@@ -257,6 +309,37 @@ def zwidth_region(device: Device, b: np.ndarray | None = None, delay_samples: in
     ``passive``: also compute the Colgate-Schenkel region of the rigid-body device;
     ``twoport_limit(b) -> k`` supplies eq. (9)'s limit (NaN otherwise).  ``encoder_resolution``
     (m) turns on the noise criterion with tolerance ``force_noise`` (N rms, default 0.1).
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    b : numpy.ndarray or None, optional
+        Wall dampings B [N s/m], at least two, at least 0, strictly increasing, shape (N,);
+        ``None`` for :data:`DEFAULT_B`.
+    delay_samples : int, optional
+        Computation delay in samples, 0 to 1000.
+    velocity_filter : VelocityFilter or None, optional
+        The velocity estimate's filter; ``None`` for the backward difference.
+    termination : Termination or None, optional
+        The grasp and environment; ``None`` for hands-off against the god-object wall.
+    implementation_delay : bool, optional
+        The one-sample delay between coupling and environment.
+    k_range : tuple of (float, float), optional
+        The scanned K [N/m], ``(low, high)`` with ``0 < low < high``, finite.
+    passive : bool, optional
+        Also compute the Colgate-Schenkel passive region of the rigid-body device.
+    twoport_limit : callable or None, optional
+        ``twoport_limit(b) -> k``: eq. (9)'s limit [N/m] at each B, shape (N,).
+    encoder_resolution : float or None, optional
+        Encoder resolution [m] of the noise criterion; ``None`` turns it off.
+    force_noise : float or None, optional
+        Force-noise tolerance [N rms]; ``None`` for 0.1 (only with ``encoder_resolution``).
+
+    Returns
+    -------
+    ZWidthRegion
+        The region, its limits and areas.
     """
     bs = check_b_values(b)
     vf = BACKWARD if velocity_filter is None else velocity_filter
