@@ -64,6 +64,27 @@ class FilterOptimum:
     ``measure`` names the area maximized (``"area_linear"`` or ``"area_log"``);
     ``encoder_resolution`` (m) and ``force_noise`` (N rms) are the noise criterion's
     (:mod:`analysis.sampled.velocity_noise`; ``None`` when off).
+
+    Parameters
+    ----------
+    kind : str
+        The filter kind, ``"lowpass1"`` or ``"butter2"``.
+    cutoffs : numpy.ndarray
+        The cut-off grid [rad/s], increasing, shape (N,).
+    areas : numpy.ndarray
+        The area at each cut-off (in the unit of ``measure``), shape (N,).
+    cutoff : float
+        The refined maximizing cut-off [rad/s].
+    area : float
+        The area there.
+    backward_area : float
+        The area with the raw backward difference.
+    measure : str
+        ``"area_linear"`` [N^2 s/m^2] or ``"area_log"`` [decades^2].
+    encoder_resolution : float or None, optional
+        Encoder resolution [m] of the noise criterion; ``None`` when off.
+    force_noise : float or None, optional
+        Force-noise tolerance [N rms]; ``None`` when off.
     """
 
     kind: str
@@ -100,6 +121,44 @@ def optimal_filter(device: Device, kind: str = "lowpass1", cutoffs: np.ndarray |
     ``encoder_resolution`` (m) turns on the noise criterion of
     :func:`~analysis.sampled.zwidth.zwidth_region` (B above ``F_noise/sigma_v`` not renderable;
     ``force_noise`` N rms, default 0.1): the noise side of Chawda et al.'s trade-off.
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    kind : str, optional
+        The filter kind, ``"lowpass1"`` or ``"butter2"``.
+    cutoffs : numpy.ndarray or None, optional
+        At least three increasing cut-offs [rad/s] below Nyquist; ``None`` for the default 30.
+    b : numpy.ndarray or None, optional
+        Wall dampings B [N s/m] of each region; ``None`` for
+        :data:`~analysis.sampled.zwidth.DEFAULT_B`.
+    delay_samples : int, optional
+        Computation delay in samples.
+    measure : str, optional
+        The area maximized, ``"area_linear"`` or ``"area_log"``.
+    k_range : tuple of (float, float), optional
+        The scanned K [N/m], ``(low, high)``.
+    refine_iterations : int, optional
+        Largest number of regions of the refinement.
+    per_decade : int, optional
+        The K scan resolution of each region [points per decade].
+    progress : callable, optional
+        ``progress(done, total)``, called after each region.
+    cancelled : callable, optional
+        ``cancelled() -> bool``, asked before each region.
+    encoder_resolution : float or None, optional
+        Encoder resolution [m] of the noise criterion; ``None`` turns it off.
+    force_noise : float or None, optional
+        Force-noise tolerance [N rms]; ``None`` for 0.1 (only with ``encoder_resolution``).
+    **region_options
+        Keyword arguments of :func:`~analysis.sampled.zwidth.stiffness_limits`
+        (``termination``, ``implementation_delay``).
+
+    Returns
+    -------
+    FilterOptimum or None
+        The areas and the optimum; ``None`` when cancelled.
     """
     choice("measure", measure, _AREAS, allowed=" or ".join(_AREAS))
     cs = _cutoffs(kind, cutoffs, device.sample_time)
@@ -179,7 +238,21 @@ class _Cancelled(Exception):
 
 @dataclass(frozen=True)
 class MeasuredTrials:
-    """Hardware trials: wall damping ``b`` (N s/m), stiffness ``k`` (N/m), ``stable`` flags, file lines."""
+    """Hardware trials: wall damping ``b`` (N s/m), stiffness ``k`` (N/m), ``stable`` flags, file lines.
+
+    Parameters
+    ----------
+    path : str
+        The CSV file read.
+    b : numpy.ndarray
+        Wall damping of each trial [N s/m], shape (M,).
+    k : numpy.ndarray
+        Wall stiffness of each trial [N/m], shape (M,).
+    stable : numpy.ndarray
+        Whether each trial was stable, bool, shape (M,).
+    lines : numpy.ndarray
+        File line of each trial, shape (M,).
+    """
 
     path: str
     b: np.ndarray
@@ -241,7 +314,19 @@ def load_trials(path: str | os.PathLike) -> MeasuredTrials:
 @dataclass(frozen=True)
 class TrialScore:
     """Trials against a region: ``predicted`` stable flags, ``wrong`` indices (analysis disagrees),
-    ``outside`` indices (B outside the region's range: not scored)."""
+    ``outside`` indices (B outside the region's range: not scored).
+
+    Parameters
+    ----------
+    predicted : numpy.ndarray
+        Predicted stable flag of each trial, bool, shape (M,) (False outside the range).
+    wrong : numpy.ndarray
+        Indices of the scored trials where prediction and measurement disagree.
+    outside : numpy.ndarray
+        Indices of the trials whose B is outside the region's range.
+    scored : int
+        Number of trials scored (inside the range).
+    """
 
     predicted: np.ndarray
     wrong: np.ndarray
@@ -253,14 +338,38 @@ class TrialScore:
         return int(self.wrong.size)
 
     def describe(self, trials: MeasuredTrials) -> list[str]:
-        """One line per wrong trial: file line, (B, K), measured and predicted."""
+        """One line per wrong trial: file line, (B, K), measured and predicted.
+
+        Parameters
+        ----------
+        trials : MeasuredTrials
+            The trials that were scored.
+
+        Returns
+        -------
+        list of str
+            One line per index of ``wrong``.
+        """
         word = {True: "stable", False: "unstable"}
         return [f"line {trials.lines[i]}: B = {trials.b[i]:.4g} N s/m, K = {trials.k[i]:.4g} N/m measured "
                 f"{word[bool(trials.stable[i])]}, predicted {word[bool(self.predicted[i])]}" for i in self.wrong]
 
 
 def score_trials(region: ZWidthRegion, trials: MeasuredTrials) -> TrialScore:
-    """Predicted stable iff ``k <= K_max(b)`` of the region (interpolated in log B)."""
+    """Predicted stable iff ``k <= K_max(b)`` of the region (interpolated in log B).
+
+    Parameters
+    ----------
+    region : ZWidthRegion
+        The exact region.
+    trials : MeasuredTrials
+        The hardware trials.
+
+    Returns
+    -------
+    TrialScore
+        The predictions and the disagreements.
+    """
     lim = region.k_limit(trials.b)
     outside = np.isnan(lim)
     predicted = np.where(outside, False, trials.k <= np.nan_to_num(lim, nan=0.0))
