@@ -403,7 +403,7 @@ def spectral_radius(Phi: np.ndarray, rigid_tol: float = RIGID_TOL) -> np.ndarray
     Returns
     -------
     numpy.ndarray
-        Spectral radii, shape (...,) (a 0-d array for one matrix).
+        Spectral radii, shape (...,) (a numpy float for one matrix).
     """
     ev = np.linalg.eigvals(Phi)
     mag = np.abs(ev)
