@@ -108,7 +108,7 @@ def _faults(obj: Any, name: str) -> list[str]:
             return ["GL08 The object does not have a docstring"]
         out = [f"{e[0]} {e[1]}" for e in validate(name)["errors"]
                if e[0] in ("GL08", "SS01")]
-        return out + _dataclass_faults(obj, ClassDoc(obj))
+        return out + _dataclass_faults(obj, ClassDoc(obj, config={"show_class_members": False}))
     if inspect.isclass(obj) and issubclass(obj, (enum.Enum, BaseException)):
         checks: tuple[str, ...] = ("GL08", "SS01")
     else:
