@@ -14,7 +14,8 @@ Usage::
     zwidth identify MEASUREMENT... --masses N [--fix KEY=VALUE]... -o profile.json [--json]
                                   fit a chain to measurements (app/cli_identify.py; never imports Qt)
 
-Exit codes: 0 success, 1 bad profile (or the GUI cannot start), 2 usage error.
+Exit codes: 0 success, 1 bad profile (or the GUI cannot start), 2 usage error (among them an
+output file ``-o`` that is one of the command's input files).
 """
 
 from __future__ import annotations
@@ -73,7 +74,8 @@ def _parser() -> argparse.ArgumentParser:
                             "section (velocity filter, B range, trials) or the defaults.")
     export.add_argument("profile", metavar="PROFILE", help="profile JSON file")
     export.add_argument("--plot", required=True, choices=tuple(PLOTS), help="which plot")
-    export.add_argument("-o", "--output", required=True, metavar="FILE", help="FILE.png, FILE.svg or FILE.csv")
+    export.add_argument("-o", "--output", required=True, metavar="FILE",
+                        help="FILE.png, FILE.svg or FILE.csv (never one of the input files)")
     export.add_argument("--width", type=int, metavar="PX", help="PNG width in pixels (default: from --dpi)")
     export.add_argument("--height", type=int, metavar="PX", help="PNG height in pixels (default: keep aspect)")
     export.add_argument("--dpi", type=float, default=150.0,
@@ -83,7 +85,8 @@ def _parser() -> argparse.ArgumentParser:
                             description="Write the design report of a profile; the format comes from the "
                             "extension of -o (.pdf or .html).")
     report.add_argument("profile", metavar="PROFILE", help="profile JSON file")
-    report.add_argument("-o", "--output", required=True, metavar="FILE", help="report.pdf or report.html")
+    report.add_argument("-o", "--output", required=True, metavar="FILE",
+                        help="report.pdf or report.html (never one of the input files)")
     report.add_argument("--page-size", choices=("a4", "letter"), default="a4", help="PDF page size (default a4)")
     report.add_argument("--no-sampled", action="store_true",
                         help="leave out the sampled-data stability map and the scenario simulation")
@@ -206,6 +209,17 @@ def _usage(command: str, message: str) -> int:
     return 2
 
 
+def _clash(command: str, args: argparse.Namespace, profile=None) -> int | None:
+    """The usage error (exit 2) when ``-o`` names one of the command's input files: the PROFILE or,
+    once ``profile`` is loaded (with its trials path resolved), its trials file; ``None`` when none
+    (:func:`app.cli_identify.output_clash`, the one check of every command that writes)."""
+    from app.cli_identify import output_clash
+
+    trials = profile.controller.trials if profile is not None and profile.controller is not None else None
+    clash = output_clash(args.output, [("PROFILE", args.profile), ("$.controller.trials", trials)])
+    return None if clash is None else _usage(command, clash)
+
+
 def _headless() -> None:
     """Render offscreen when there is no display (and the caller did not choose a platform)."""
     if (not os.environ.get("QT_QPA_PLATFORM") and sys.platform.startswith("linux")
@@ -223,6 +237,9 @@ def _export_plot(args: argparse.Namespace) -> int:
             return _usage("export-plot", f"--{opt} must be between 16 and 20000 pixels")
     if not 10 <= args.dpi <= 2400:
         return _usage("export-plot", "--dpi must be between 10 and 2400")
+    code = _clash("export-plot", args)
+    if code is not None:
+        return code
     profile, code = _load(args.profile)
     if profile is None:
         return code
@@ -236,6 +253,9 @@ def _export_plot(args: argparse.Namespace) -> int:
         profile = profile.replace(controller=ControllerSection())
     profile, code = _with_trials(profile, args.profile, check=args.plot in TRIALS_PLOTS)
     if profile is None:
+        return code
+    code = _clash("export-plot", args, profile)
+    if code is not None:
         return code
     _headless()
     from analysis.errors import ValidationError
@@ -269,11 +289,17 @@ def _report(args: argparse.Namespace) -> int:
 
     if report_format(args.output) is None:
         return _usage("report", f"-o {args.output}: the extension must be .pdf or .html")
+    code = _clash("report", args)
+    if code is not None:
+        return code
     profile, code = _load(args.profile)
     if profile is None:
         return code
     profile, code = _with_trials(profile, args.profile)
     if profile is None:
+        return code
+    code = _clash("report", args, profile)
+    if code is not None:
         return code
     _headless()
     from analysis.errors import ValidationError

@@ -15,17 +15,20 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
+import os
 import sys
+from collections.abc import Iterable
 from pathlib import Path
 
-__all__ = ["add_identify_parser", "run_identify", "format_parameters"]
+__all__ = ["add_identify_parser", "run_identify", "format_parameters", "output_clash"]
 
 
 def add_identify_parser(sub: argparse._SubParsersAction) -> None:
     """Add the ``identify`` subcommand to the ``zwidth`` parser."""
     p = sub.add_parser("identify", help="fit a chain model to measured frequency responses and write a profile",
                        description="Fit an N-mass chain to FRF or time-series CSV files (all together) and write "
-                       "a profile with the fitted device and an identification section (95 %% intervals, "
+                       "a profile with the fitted device and an identification section (95 % intervals, "
                        "embedded measurements).")
     p.add_argument("measurements", metavar="MEASUREMENT", nargs="+", help="FRF or time-series CSV file")
     p.add_argument("--masses", type=int, required=True, metavar="N", help="number of masses of the chain")
@@ -41,8 +44,34 @@ def add_identify_parser(sub: argparse._SubParsersAction) -> None:
                    help="0-based mass with a damper to ground (repeatable; default: the actuator, N-1)")
     p.add_argument("--orders", action="store_true", help="also fit n = 1..N and print AIC/BIC/residual")
     p.add_argument("--base", metavar="PROFILE", help="profile whose couplings and gains are kept (default: HBFD)")
-    p.add_argument("-o", "--output", required=True, metavar="FILE", help="profile JSON to write")
+    p.add_argument("-o", "--output", required=True, metavar="FILE",
+                   help="profile JSON to write (never one of the MEASUREMENT files)")
+    p.add_argument("--force", action="store_true", help="let -o overwrite the --base profile")
     p.add_argument("--json", action="store_true", help="print the parameter table as JSON")
+
+
+def _same_file(a: str | os.PathLike, b: str | os.PathLike) -> bool:
+    """Whether two paths name the same file: :func:`os.path.samefile` when both exist (hard and
+    symbolic links too), else their resolved absolute paths compared (case-folded where the file
+    system folds case)."""
+    try:
+        if os.path.exists(a) and os.path.exists(b):
+            return os.path.samefile(a, b)
+        return os.path.normcase(os.path.realpath(a)) == os.path.normcase(os.path.realpath(b))
+    except (OSError, TypeError, ValueError):  # an unusable name is reported where it is used
+        return False
+
+
+def output_clash(output: str | os.PathLike, inputs: Iterable[tuple[str, str | os.PathLike | None]],
+                 option: str = "-o", remedy: str = "write the output to another file") -> str | None:
+    """Why ``output`` must not be written, or ``None``: the usage error (exit 2) of every ``zwidth``
+    command when its output file is one of its input files (issue 22: ``identify m.csv -o m.csv``
+    overwrote the measurement).  ``inputs`` are ``(what, path)`` pairs, e.g. ``("MEASUREMENT",
+    "m.csv")`` or ``("--base", "p.json")``; ``None`` paths are skipped; ``remedy`` ends the message."""
+    for what, path in inputs:
+        if path is not None and _same_file(output, path):
+            return f"{option} {os.fspath(output)}: this is the input file {what} {os.fspath(path)}; {remedy}"
+    return None
 
 
 def _fail(message: str, code: int = 1) -> int:
@@ -105,6 +134,16 @@ def run_identify(args: argparse.Namespace) -> int:
 
     if args.masses < 1:
         return _fail("--masses must be >= 1", 2)
+    if args.sample_time is not None and not (math.isfinite(args.sample_time) and args.sample_time > 0):
+        return _fail(f"--sample-time {args.sample_time:g}: the controller sample period must be > 0 and finite (s)", 2)
+    if args.delay < 0 or (args.delay and args.sample_time is None):
+        return _fail(f"--delay {args.delay}: must be >= 0, and 0 without --sample-time", 2)
+    clash = output_clash(args.output, [("MEASUREMENT", m) for m in args.measurements])
+    if clash is None and not args.force:
+        clash = output_clash(args.output, [("--base", args.base)],
+                             remedy="write the output to another file, or add --force to overwrite the base profile")
+    if clash:
+        return _fail(clash, 2)
     try:
         fixed = parse_fixed(args.fix)
     except ValueError as err:
