@@ -14,7 +14,7 @@ import io
 import os
 
 from PySide6.QtCore import QByteArray, QBuffer, QIODevice, QRectF, QSize
-from PySide6.QtGui import QColor, QImage, QPainter
+from PySide6.QtGui import QColor, QImage, QPainter, QPicture
 
 from analysis.profiles import WriteError, atomic_write
 
@@ -80,7 +80,13 @@ def export_svg(view: PlotView, path: str | os.PathLike) -> None:
 
 
 def svg_bytes(view: PlotView, title: str, background: str, description: str = "") -> bytes:
-    """The plot as an SVG document (QSvgGenerator; vector axes, curves and text)."""
+    """The plot as an SVG document (QSvgGenerator; vector axes, curves and text).
+
+    The generator's resolution is that of a QPicture: pyqtgraph's axes record their ticks, labels
+    and grid in a QPicture, and a QPicture played on a device of another resolution is scaled by
+    the ratio (QSvgGenerator's default 72 dpi against the screen's 96 drew the axes at 75 % of
+    the curves' scale; pyqtgraph's own exporter sets the screen's dpi for the same reason).
+    """
     from PySide6.QtSvg import QSvgGenerator
 
     src = _source(view)
@@ -89,6 +95,7 @@ def svg_bytes(view: PlotView, title: str, background: str, description: str = ""
     dev.open(QIODevice.OpenModeFlag.WriteOnly)
     gen = QSvgGenerator()
     gen.setOutputDevice(dev)
+    gen.setResolution(QPicture().logicalDpiX())
     gen.setSize(src.size().toSize())
     gen.setViewBox(QRectF(0, 0, src.width(), src.height()))
     gen.setTitle(title)

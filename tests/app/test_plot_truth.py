@@ -1,0 +1,85 @@
+"""Plots and exports tell the truth (issue 22): axes at the data's scale in every SVG, shading only
+where a range exists and down to the axis, one quantity per legend entry and unit."""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+from PySide6.QtCore import QPointF
+from PySide6.QtGui import QFont, QFontMetricsF
+
+from analysis.study import design_chart
+from app.report.figures import _prepare
+from app.views.design_chart import DesignChart
+from app.views.export import export_svg, svg_bytes
+
+SVG = "{http://www.w3.org/2000/svg}"
+MATRIX = re.compile(r"matrix\(([^)]*)\)")
+
+
+def _texts(root: ET.Element) -> list[tuple[str, float, float, float]]:
+    """(text, absolute x of its start, absolute y, font pixel size) of every <text> in the drawing."""
+    out = []
+    for g in root.iter(f"{SVG}g"):
+        m = MATRIX.search(g.get("transform", "")) if g.get("transform") else None
+        a, b, c, d, e, f = (float(v) for v in m.group(1).split(",")) if m else (1, 0, 0, 1, 0, 0)
+        for t in g.findall(f"{SVG}text"):
+            x, y = float(t.get("x", 0)), float(t.get("y", 0))
+            out.append(((t.text or "").strip(), a * x + c * y + e, b * x + d * y + f,
+                        float(t.get("font-size", 12)) * np.hypot(a, b)))
+    return out
+
+
+def _centre(text: str, x: float, size: float) -> float:
+    font = QFont("Sans Serif")
+    font.setPixelSize(round(size))
+    font.setHintingPreference(QFont.HintingPreference.PreferNoHinting)
+    return x + QFontMetricsF(font).horizontalAdvance(text) / 2
+
+
+@pytest.fixture
+def chart(qapp, hbfd_profile):
+    view = DesignChart()
+    view.update_chart(design_chart(hbfd_profile))
+    ux, uy = view.upper.getData()
+    view.update_point(100.0, float(10 ** np.interp(2.0, ux, uy)) / 3, True)  # a data point at b_c = 100
+    _prepare(view)
+    yield view
+    view.close()
+    view.deleteLater()
+
+
+def _data_x(view: DesignChart, bc: float) -> float:
+    """Where b_c = ``bc`` is drawn, in the exported drawing's coordinates (the viewport's)."""
+    vb = view.plot.getViewBox()
+    scene = vb.mapViewToScene(QPointF(np.log10(bc), vb.viewRange()[1][0]))
+    return float(view.plot_widget.mapFromScene(scene).x())
+
+
+@pytest.mark.parametrize("write", ["export_svg", "report_svg"])
+def test_svg_tick_labels_sit_on_their_data(chart, tmp_path, write):
+    """The "100" tick label of the b_c axis is centred on b_c = 100, where the current-gains dot is
+    drawn (pyqtgraph's axes are QPictures: a generator at another dpi scaled them to 75 %)."""
+    if write == "export_svg":
+        path = tmp_path / "chart.svg"
+        export_svg(chart, path)
+        data = path.read_bytes()
+    else:  # the HTML report's figures come from the same writer
+        data = svg_bytes(chart, "Design chart", "#ffffff")
+    root = ET.fromstring(data)
+    x100 = _data_x(chart, 100.0)
+    texts = _texts(root)
+    bottom = max(y for s, _x, y, _f in texts if s == "100")  # the b_c axis is the lowest "100"
+    labels = [(s, x, f) for s, x, y, f in texts if s in ("10", "100", "1000") and abs(y - bottom) < 1]
+    assert {s for s, _x, _f in labels} == {"10", "100", "1000"}
+    for s, x, size in labels:
+        assert abs(size - 12) < 0.01  # 9 pt at 96 dpi, not scaled
+        assert _centre(s, x, size) == pytest.approx(_data_x(chart, float(s)), abs=1.0)
+    # the dot: a marker translated to its centre at b_c = 100
+    moves = [[float(v) for v in m.group(1).split(",")] for g in root.iter(f"{SVG}g")
+             if (m := MATRIX.search(g.get("transform", "")))]
+    assert any(abs(m[4] - x100) < 1.0 and m[0] > 1 for m in moves)
+    assert not any(0 < abs(m[0]) < 1 for m in moves), "a group is drawn scaled down"
