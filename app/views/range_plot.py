@@ -22,7 +22,7 @@ from analysis.study import display_kind, rich_numbers, superscript_numbers
 
 from app.views.base import PlotView, Series, clean_xy, plain, rich_label
 
-__all__ = ["RangePlot", "interest_mask", "set_data", "set_text", "TAIL_FRACTION", "TAIL_JUMP", "BMIN_DECADES"]
+__all__ = ["RangePlot", "band_segments", "interest_mask", "set_data", "set_text", "TAIL_FRACTION", "TAIL_JUMP", "BMIN_DECADES"]
 
 #: the last part of the band (fraction of its top frequency) that may leave the default view ...
 TAIL_FRACTION = 0.98
@@ -58,6 +58,32 @@ def set_text(item: pg.TextItem, text: str) -> None:
     """``item.setText(text)`` unless it shows ``text`` already (a new text is laid out and repainted)."""
     if item.textItem.toPlainText() != text:
         item.setText(text)
+
+
+def band_segments(x1: np.ndarray, lo: np.ndarray, x2: np.ndarray, hi: np.ndarray
+                  ) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """The stretches of x where the curve ``lo`` lies below ``hi``: ``(x, lo, hi)`` each.
+
+    Both curves are taken on the union of their (increasing) x where both are defined, linearly
+    between points; a stretch starts and ends where the curves cross.  Where ``lo >= hi`` the
+    range is empty and no stretch covers it.
+    """
+    x = np.union1d(x1, x2)
+    x = x[(x >= max(x1[0], x2[0])) & (x <= min(x1[-1], x2[-1]))]
+    if x.size < 2:
+        return []
+    a, b = np.interp(x, x1, lo), np.interp(x, x2, hi)
+    d = b - a
+    cross = np.flatnonzero(d[:-1] * d[1:] < 0)
+    t = d[cross] / (d[cross] - d[cross + 1])
+    at = a[cross] + t * (a[cross + 1] - a[cross])  # lo == hi where they cross
+    xs = np.insert(x, cross + 1, x[cross] + t * (x[cross + 1] - x[cross]))
+    a_s, b_s = np.insert(a, cross + 1, at), np.insert(b, cross + 1, at)
+    d_s = np.insert(d, cross + 1, 0.0)
+    ok = np.concatenate([[False], d_s >= 0, [False]])
+    edges = np.flatnonzero(np.diff(ok.astype(np.int8)))  # run starts and stops, alternately
+    return [(xs[i:j], a_s[i:j], b_s[i:j]) for i, j in zip(edges[::2], edges[1::2])
+            if j - i >= 2 and np.any(d_s[i:j] > 0)]
 
 
 class RangePlot(PlotView):
@@ -172,13 +198,15 @@ class RangePlot(PlotView):
             f"↑ off-scale: |Z| rises to {top} N·s/m above ω = {plain(float(w[keep][-1]))} rad/s"))
 
     def _update_fill(self, x1: np.ndarray, y1: np.ndarray, x2: np.ndarray, y2: np.ndarray) -> None:
-        if x1.size < 2 or x2.size < 2:
-            self.fill.setPath(QPainterPath())
-            return
-        x = np.log10(np.concatenate([x1, x2[::-1]]))
-        y = np.log10(np.concatenate([y1, y2[::-1]]))
-        path = pg.arrayToQPath(x, y, connect="all")
-        path.closeSubpath()
+        """Shade the band where |Z_min| < |Z_max| only: one polygon per stretch where the range
+        exists, each ending where the curves cross (an empty range is not shaded)."""
+        path = QPainterPath()
+        if x1.size >= 2 and x2.size >= 2:
+            for x, lo, hi in band_segments(np.log10(x1), np.log10(y1), np.log10(x2), np.log10(y2)):
+                piece = pg.arrayToQPath(np.concatenate([x, x[::-1]]), np.concatenate([lo, hi[::-1]]),
+                                        connect="all")
+                piece.closeSubpath()
+                path.addPath(piece)
         self.fill.setPath(path)
 
     def restyle(self, pal: dict) -> None:

@@ -11,10 +11,11 @@ import pytest
 from PySide6.QtCore import QPointF
 from PySide6.QtGui import QFont, QFontMetricsF
 
-from analysis.study import design_chart
+from analysis.study import design_chart, display_kind
 from app.report.figures import _prepare
 from app.views.design_chart import DesignChart
 from app.views.export import export_svg, svg_bytes
+from app.views.range_plot import RangePlot, band_segments
 
 SVG = "{http://www.w3.org/2000/svg}"
 MATRIX = re.compile(r"matrix\(([^)]*)\)")
@@ -83,3 +84,39 @@ def test_svg_tick_labels_sit_on_their_data(chart, tmp_path, write):
              if (m := MATRIX.search(g.get("transform", "")))]
     assert any(abs(m[4] - x100) < 1.0 and m[0] > 1 for m in moves)
     assert not any(0 < abs(m[0]) < 1 for m in moves), "a group is drawn scaled down"
+
+
+def test_range_band_is_shaded_only_where_the_range_exists(qtbot, hbfd_profile):
+    """|Z_min| > |Z_max| (about 60-180 rad/s on the HBFD) is an empty range: nothing shaded there."""
+    res = display_kind(hbfd_profile).evaluate(hbfd_profile)
+    view = RangePlot()
+    qtbot.addWidget(view)
+    view.update_result(res)
+    lo, hi = np.log10(np.abs(res.zmin)), np.log10(np.abs(res.zmax))
+    w = np.log10(res.w)
+    empty = lo > hi
+    assert 10 < empty.sum() < w.size - 10  # the HBFD has an empty stretch and a band
+    assert empty[np.argmin(np.abs(res.w - 100.0))] and not empty[np.argmin(np.abs(res.w - 20.0))]
+    path = view.fill.path()
+    hits = np.array([path.contains(QPointF(x, (a + b) / 2)) for x, a, b in zip(w, lo, hi)])
+    clear = np.abs(hi - lo) > 1e-3  # a crossing lies between samples: only test off the crossings
+    inner = clear & (np.arange(w.size) > 0) & (np.arange(w.size) < w.size - 1)
+    assert not np.any(hits[inner & empty])
+    assert np.all(hits[inner & ~empty])
+    # no polygon reaches into the empty stretch: each lies where lo <= hi
+    for poly in path.toSubpathPolygons():
+        xs = np.array([poly.at(i).x() for i in range(poly.size())])
+        inside = (w > xs.min() + 1e-9) & (w < xs.max() - 1e-9)
+        assert not np.any(inside & empty)
+    assert len(path.toSubpathPolygons()) >= 2
+
+
+def test_band_segments_end_at_the_crossings():
+    x = np.linspace(0.0, 10.0, 11)
+    segs = band_segments(x, np.zeros(11), x, np.sin(x))
+    assert len(segs) == 2
+    (xa, la, ha), (xb, lb, hb) = segs
+    assert xa[0] == 0.0 and xa[-1] == pytest.approx(3.157, abs=1e-3) and ha[-1] == la[-1]
+    assert xb[0] == pytest.approx(6.298, abs=1e-3) and xb[-1] == pytest.approx(9.431, abs=1e-3)
+    assert np.all(ha >= la) and np.all(hb >= lb)
+    assert band_segments(x, np.ones(11), x, np.zeros(11)) == []
