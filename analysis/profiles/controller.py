@@ -45,11 +45,31 @@ _KEYS = ("velocity_filter", "b_range", "trials", "encoder_resolution", "force_no
 class ControllerSection:
     """The controller as built: velocity filter, the region's B range (N s/m) and a trials file.
 
-    ``b_range`` is ``(min, max)`` with ``0 < min < max`` finite; ``b_points`` in 2..1000;
-    ``trials`` a path (the command line reads a relative one from the profile's folder:
-    :func:`analysis.study.resolve_trials`) or ``None``;
-    ``encoder_resolution`` (m) and ``force_noise`` (N rms) the optional noise criterion (``None``:
-    off; ``force_noise`` ``None`` with a resolution is the default 0.1 N).
+    Parameters
+    ----------
+    velocity_filter : VelocityFilter, optional
+        The controller's velocity estimate; default the backward difference.
+    b_range : tuple of (float, float), optional
+        ``(min, max)`` of the Z-width region's wall damping B [N s/m], ``0 < min < max``,
+        finite; default :data:`DEFAULT_B_RANGE`.
+    b_points : int, optional
+        Number of B values of the region, 2 to 1000; default :data:`DEFAULT_B_POINTS`.
+    trials : str or None, optional
+        Path of a CSV of hardware trials (the command line reads a relative one from the
+        profile's folder: :func:`analysis.study.resolve_trials`), or ``None``.
+    encoder_resolution : float or None, optional
+        Encoder resolution at the handle [m], 1e-9 to 1e-2; turns on the noise criterion of the
+        region. ``None``: off.
+    force_noise : float or None, optional
+        The largest quantization force noise a renderable wall damping may cause [N rms], 1e-6
+        to 1e3; ``None`` with a resolution is the default 0.1 N. Must be ``None`` without
+        ``encoder_resolution``.
+
+    Raises
+    ------
+    ValidationError
+        When a field is outside its range (or ``force_noise`` is given without
+        ``encoder_resolution``).
     """
 
     velocity_filter: VelocityFilter = field(default=BACKWARD)
@@ -83,15 +103,45 @@ class ControllerSection:
             object.__setattr__(self, "force_noise", FORCE_NOISE("force_noise", self.force_noise))
 
     def check(self, sample_time: float) -> None:
-        """Raises ValidationError (field ``cutoff``) when the filter's cut-off is above Nyquist."""
+        """Check the velocity filter against a sample period.
+
+        Parameters
+        ----------
+        sample_time : float
+            The controller's sample period [s].
+
+        Raises
+        ------
+        ValidationError
+            Field ``cutoff``, when the filter's cut-off is above the Nyquist frequency
+            ``pi / sample_time`` (or at it, for ``"butter2"``: :meth:`VelocityFilter.check`).
+        """
         self.velocity_filter.check(sample_time)
 
     def replace(self, **changes: Any) -> ControllerSection:
-        """A copy with some fields changed, validated again."""
+        """A copy with some fields changed, validated again.
+
+        Parameters
+        ----------
+        **changes
+            New values of fields, by name (``velocity_filter``, ``b_range``, ...).
+
+        Returns
+        -------
+        ControllerSection
+            The new section.
+        """
         return dataclasses.replace(self, **changes)
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON-ready section (``inf`` cut-off written as ``"inf"``)."""
+        """The JSON-ready section (``inf`` cut-off written as ``"inf"``).
+
+        Returns
+        -------
+        dict of str to Any
+            ``velocity_filter`` and ``b_range`` {``min``, ``max``, ``points``}, and ``trials``,
+            ``encoder_resolution`` and ``force_noise`` where they are not ``None``.
+        """
         out: dict[str, Any] = {
             "velocity_filter": self.velocity_filter.to_dict(),
             "b_range": {"min": self.b_range[0], "max": self.b_range[1], "points": self.b_points},
@@ -126,7 +176,23 @@ def _b_range(value: object) -> tuple[tuple[float, float], int]:
 
 
 def parse_controller(data: object) -> ControllerSection:
-    """The ``controller`` section of a (migrated) profile dict; ProfileError at the JSON path."""
+    """The ``controller`` section of a (migrated) profile dict.
+
+    Parameters
+    ----------
+    data : object
+        The value of the profile's ``controller`` key (a JSON object).
+
+    Returns
+    -------
+    ControllerSection
+        The section, every missing key at its default.
+
+    Raises
+    ------
+    ProfileError
+        At the JSON path of the first bad or unknown key, e.g. ``$.controller.velocity_filter.cutoff``.
+    """
     if not isinstance(data, Mapping):
         raise ProfileError.at("$.controller", "a JSON object with keys " + ", ".join(_KEYS), data)
     unknown = set(data) - set(_KEYS)

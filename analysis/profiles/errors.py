@@ -56,11 +56,39 @@ class ProfileError(ValueError):
 
     @classmethod
     def at(cls, json_path: str, expected: str, got: object = MISSING) -> ProfileError:
-        """``$.x: expected <expected>, got <value>`` (``missing`` when the key is absent)."""
+        """``$.x: expected <expected>, got <value>`` (``missing`` when the key is absent).
+
+        Parameters
+        ----------
+        json_path : str
+            Location of the offending value, e.g. ``"$.device.masses[2]"``.
+        expected : str
+            What was expected there, e.g. ``"a number > 0 and finite (kg)"``.
+        got : object, optional
+            The value found (described by :func:`describe`); :data:`MISSING` (the default) when
+            the key is absent.
+
+        Returns
+        -------
+        ProfileError
+            The error, with no file yet (:meth:`with_path` adds it).
+        """
         return cls(f"expected {expected}, got {describe(got)}", json_path=json_path, expected=expected)
 
     def with_path(self, path: str | os.PathLike | None) -> ProfileError:
-        """The same error attributed to file ``path``."""
+        """The same error attributed to file ``path``.
+
+        Parameters
+        ----------
+        path : str or os.PathLike or None
+            The file the profile came from; ``None`` for none.
+
+        Returns
+        -------
+        ProfileError
+            A new error naming ``path``, with the same cause; this error itself when ``path`` is
+            ``None`` or the error already names a file.
+        """
         if path is None or self.path is not None:
             return self
         err = ProfileError(self.reason, path=path, json_path=self.json_path, expected=self.expected)

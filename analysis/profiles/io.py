@@ -19,8 +19,8 @@ mass), exactly one of them.  ``notes``, ``ground_dampings`` (default zeros),
 keys are rejected, so that a misspelt key is not silently ignored.
 
 Every problem with a file is reported as a :class:`ProfileError` naming the file and the JSON
-path of the offending value, e.g. ``hbfd.json: $.device.masses[2]: expected a number > 0 and
-finite, got -1.0``.  Older schema versions are brought up to date by :data:`MIGRATIONS`.
+path of the offending value, e.g. ``hbfd.json: $.device.masses[2] (mass 3): expected a number > 0
+and finite, ..., got -1.0``.  Older schema versions are brought up to date by :data:`MIGRATIONS`.
 
 The work is split by what it holds, each module importing only those before it:
 :mod:`analysis.profiles.errors` (:class:`ProfileError`), :mod:`analysis.profiles.sections` (the
@@ -95,8 +95,24 @@ def migrate(data: Mapping) -> dict:
     """Bring a profile dict of any supported schema version up to :data:`SCHEMA_VERSION`.
 
     Applies ``MIGRATIONS[v]`` for ``v = data["schema_version"], ..., SCHEMA_VERSION - 1``; the
-    input is not modified.  Raises ProfileError for a missing, unknown or newer version or a
-    failing migration.
+    input is not modified.
+
+    Parameters
+    ----------
+    data : Mapping
+        A parsed profile (a JSON object) with its ``schema_version``.
+
+    Returns
+    -------
+    dict
+        The profile at :data:`SCHEMA_VERSION` (a shallow copy when it already is, a deep copy
+        otherwise).
+
+    Raises
+    ------
+    ProfileError
+        For data that is not an object, a missing, invalid or newer schema version, or a
+        failing migration.
     """
     if not isinstance(data, Mapping):
         raise ProfileError.at("$", "a JSON object", data)
@@ -138,7 +154,22 @@ def _build(data: object) -> Profile:
 def profile_from_dict(data: object, path: str | os.PathLike | None = None) -> Profile:
     """Validate a parsed profile (any schema version) and build the :class:`Profile`.
 
-    ``path`` is only used in error messages.  Raises :class:`ProfileError` and nothing else.
+    Parameters
+    ----------
+    data : object
+        The parsed JSON of a profile.
+    path : str or os.PathLike or None, optional
+        The file it came from, only used in error messages.
+
+    Returns
+    -------
+    Profile
+        The validated profile.
+
+    Raises
+    ------
+    ProfileError
+        For any problem with ``data`` (and nothing else), naming ``path`` and the JSON path.
     """
     try:
         return _build(data)
@@ -151,7 +182,19 @@ def profile_from_dict(data: object, path: str | os.PathLike | None = None) -> Pr
 
 
 def profile_to_dict(profile: Profile) -> dict:
-    """The JSON-ready dict of a profile (current schema, element dampings in N s/m)."""
+    """The JSON-ready dict of a profile (current schema, element dampings in N s/m).
+
+    Parameters
+    ----------
+    profile : Profile
+        The profile.
+
+    Returns
+    -------
+    dict
+        The profile as :func:`save_profile` writes it, at :data:`SCHEMA_VERSION`, with its
+        optional sections where the profile has them.
+    """
     dev = profile.device
     return {
         "schema_version": SCHEMA_VERSION,
@@ -180,7 +223,24 @@ def profile_to_dict(profile: Profile) -> dict:
 
 
 def load_profile(path: str | os.PathLike) -> Profile:
-    """Read and validate a profile file.  Raises :class:`ProfileError` and nothing else."""
+    """Read and validate a profile file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The profile's JSON file.
+
+    Returns
+    -------
+    Profile
+        The validated profile (older schema versions migrated).
+
+    Raises
+    ------
+    ProfileError
+        For any problem (and nothing else): an unreadable file, invalid JSON or a bad value,
+        naming the file and the JSON path.
+    """
     return profile_from_dict(read_json(path), path)
 
 
@@ -189,7 +249,20 @@ def save_profile(profile: Profile, path: str | os.PathLike) -> None:
 
     The JSON goes to a temporary file in the same directory, which is flushed, fsynced and then
     renamed over ``path``; on any failure the temporary file is removed and an existing file at
-    ``path`` is left untouched.  Raises :class:`ProfileError` (with the OSError as its cause).
+    ``path`` is left untouched.
+
+    Parameters
+    ----------
+    profile : Profile
+        The profile to write.
+    path : str or os.PathLike
+        The file to write.
+
+    Raises
+    ------
+    ProfileError
+        When the profile cannot be serialised or the file cannot be written (with the
+        exception, e.g. the OSError, as its cause).
     """
     try:
         text = json.dumps(profile_to_dict(profile), indent=2, allow_nan=False) + "\n"

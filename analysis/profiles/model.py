@@ -30,7 +30,15 @@ __all__ = ["DISPLAYS", "SCALAR_FIELDS", "ScalarField", "Profile", "per_mass_chan
 
 
 class ScalarField(NamedTuple):
-    """Where a scalar :class:`Profile` field lives in the JSON and its physical range."""
+    """Where a scalar :class:`Profile` field lives in the JSON and its physical range.
+
+    Parameters
+    ----------
+    json_path : str
+        The field's JSON path in a profile file, e.g. ``"$.impedance_coupling.stiffness"``.
+    limit : Limit
+        Its physical range and unit (:data:`analysis.chain.limits.LIMITS`).
+    """
 
     json_path: str
     limit: Limit
@@ -129,7 +137,26 @@ class Profile:
                                   self.device.n)
 
     def replace(self, **changes) -> Profile:
-        """A copy with some fields changed, validated again (raises ValidationError)."""
+        """A copy with some fields changed, validated again.
+
+        Parameters
+        ----------
+        **changes
+            New values of fields, by name (``device``, ``kc``, ``controller``, ...).
+
+        Returns
+        -------
+        Profile
+            The new profile.
+
+        Raises
+        ------
+        TypeError
+            When a name is not a field of :class:`Profile`.
+        ValidationError
+            When a changed value is invalid (out of its range, of the wrong type, or
+            inconsistent with the device).
+        """
         unknown = set(changes) - {f.name for f in dataclasses.fields(self)}
         if unknown:
             raise TypeError(f"Profile has no field(s) {', '.join(sorted(unknown))}")

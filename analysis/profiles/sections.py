@@ -33,7 +33,21 @@ SECTION_KEYS = ("wall", "observer", "simulation", "identification", "controller"
 
 @dataclass(frozen=True)
 class SimulationSection:
-    """The simulator's options and the scenario saved with a profile."""
+    """The simulator's options and the scenario saved with a profile.
+
+    Parameters
+    ----------
+    options : SimulationOptions
+        The sampled-data simulator's options (substeps, sensor resolutions, friction, actuator
+        limits, delay).
+    scenario : Scenario
+        The scenario to simulate (environment, human grasp and push, initial state, duration).
+
+    Raises
+    ------
+    ValidationError
+        When ``options`` or ``scenario`` is not of its type.
+    """
 
     options: SimulationOptions
     scenario: Scenario
@@ -90,7 +104,25 @@ def _section(kind: str, jp: str, value: object, cls: type) -> Any:
 
 
 def parse_sections(data: Mapping) -> dict[str, Any]:
-    """The optional sections of a (migrated) profile dict as settings objects or ``None``."""
+    """The optional sections of a (migrated) profile dict as settings objects or ``None``.
+
+    Parameters
+    ----------
+    data : Mapping
+        The profile dict at the current schema version.
+
+    Returns
+    -------
+    dict of str to Any
+        ``wall`` (:class:`WallSettings`), ``observer`` (:class:`ObserverSettings`) and
+        ``simulation`` (:class:`SimulationSection`), each ``None`` where the profile has no
+        such section.
+
+    Raises
+    ------
+    ProfileError
+        At the JSON path of the first bad or unknown key of a section, e.g. ``$.wall.mass``.
+    """
     out: dict[str, Any] = {"wall": None, "observer": None, "simulation": None}
     if "wall" in data:
         out["wall"] = _section("wall", "$.wall", data["wall"], WallSettings)
@@ -112,7 +144,23 @@ def parse_sections(data: Mapping) -> dict[str, Any]:
 
 def sections_to_dict(wall: WallSettings | None, observer: ObserverSettings | None,
                      simulation: SimulationSection | None) -> dict[str, Any]:
-    """The JSON-ready sections that are present (``inf`` written as ``"inf"``, see :mod:`analysis.checks`)."""
+    """The JSON-ready sections that are present (``inf`` written as ``"inf"``, see :mod:`analysis.checks`).
+
+    Parameters
+    ----------
+    wall : WallSettings or None
+        The wall-controller design settings, or ``None``.
+    observer : ObserverSettings or None
+        The disturbance observer settings, or ``None``.
+    simulation : SimulationSection or None
+        The simulator's options and scenario, or ``None``.
+
+    Returns
+    -------
+    dict of str to Any
+        ``wall``, ``observer`` and ``simulation`` (``{"options": ..., "scenario": ...}``), each
+        only where it is not ``None``.
+    """
     out: dict[str, Any] = {}
     if wall is not None:
         out["wall"] = wall.to_dict()
