@@ -112,6 +112,33 @@ def device_response(device: Device, w: np.ndarray, quantity: str = "actuator", b
                     sample_time: float | None = None, delay_samples: int = 0) -> np.ndarray:
     """Model response of one :class:`~analysis.Device` at ``w`` (rad/s), shape (F,): continuous
     when ``sample_time`` is ``None``, else exact ZOH-sampled (:mod:`analysis.identify.model`);
-    the gauge sits on ``device.sensor_element``."""
+    the gauge sits on ``device.sensor_element``.
+
+    Parameters
+    ----------
+    device : Device
+        The chain.
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (F,).
+    quantity : str, optional
+        ``"actuator"`` (m/N), ``"handle"`` (m/N) or ``"gauge"`` (N/N).
+    boundary : str, optional
+        ``"free"`` or ``"clamped"`` (handle held).
+    sample_time : float or None, optional
+        Sample period [s] of a response through the sampled controller; ``None``: continuous.
+    delay_samples : int, optional
+        Output delay [samples] (sampled only).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex response in the quantity's unit, shape (F,).
+
+    Raises
+    ------
+    ValidationError
+        For an unknown quantity or boundary, a clamped handle or 1-mass chain, or a gauge
+        without an element (a 1-mass chain).
+    """
     return response(ChainParameters.from_device(device), w, quantity, boundary, device.sensor_element,
                     sample_time, delay_samples)[0]

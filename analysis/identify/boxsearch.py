@@ -40,7 +40,21 @@ __all__ = ["ParameterBox", "SearchTrace", "box_search", "open_intervals", "param
 
 @dataclass(frozen=True, eq=False)
 class ParameterBox:
-    """Intervals on some parameters of ``device``; ``u`` in ``[0, 1]^p`` maps into it."""
+    """Intervals on some parameters of ``device``; ``u`` in ``[0, 1]^p`` maps into it.
+
+    Parameters
+    ----------
+    device : Device
+        The nominal device, with the point intervals' values already set.
+    keys : tuple of str
+        The boxed parameter keys (``p`` of them, :mod:`analysis.identify.params`).
+    low : numpy.ndarray
+        Lower ends [kg, N/m or N s/m], shape (p,).
+    high : numpy.ndarray
+        Upper ends, shape (p,), ``high > low``.
+    log : numpy.ndarray
+        Whether each coordinate is logarithmic (``low > 0``) or linear, bool, shape (p,).
+    """
 
     device: Device
     keys: tuple[str, ...]
@@ -53,12 +67,36 @@ class ParameterBox:
         return len(self.keys)
 
     def values(self, u: np.ndarray) -> np.ndarray:
+        """Parameter values of box points (the inverse of :meth:`coordinates`).
+
+        Parameters
+        ----------
+        u : numpy.ndarray
+            Box coordinates in ``[0, 1]`` (clipped), shape (E, p) or (p,).
+
+        Returns
+        -------
+        numpy.ndarray
+            Values of :attr:`keys` [kg, N/m or N s/m], shape (E, p).
+        """
         u = np.clip(np.atleast_2d(u), 0.0, 1.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             lg = self.low * (self.high / np.where(self.log, self.low, 1.0)) ** u
         return np.where(self.log, lg, self.low + u * (self.high - self.low))
 
     def coordinates(self, values: np.ndarray) -> np.ndarray:
+        """Box coordinates of parameter values (the inverse of :meth:`values`).
+
+        Parameters
+        ----------
+        values : numpy.ndarray
+            Values of :attr:`keys`, shape (..., p).
+
+        Returns
+        -------
+        numpy.ndarray
+            Coordinates clipped to ``[0, 1]``, the shape of ``values``.
+        """
         v = np.asarray(values, float)
         with np.errstate(divide="ignore", invalid="ignore"):
             lg = np.log(v / self.low) / np.log(self.high / self.low)
@@ -66,9 +104,38 @@ class ParameterBox:
         return np.clip(np.where(self.log, lg, lin), 0.0, 1.0)
 
     def device_at(self, u: np.ndarray) -> Device:
+        """The device at one box point.
+
+        Parameters
+        ----------
+        u : numpy.ndarray
+            Box coordinates, shape (p,) (or (1, p)).
+
+        Returns
+        -------
+        Device
+            :attr:`device` with :attr:`keys` set to the point's values.
+
+        Raises
+        ------
+        ValidationError
+            When a value is outside the range :class:`~analysis.Device` accepts.
+        """
         return device_with(self.device, dict(zip(self.keys, self.values(u)[0])))
 
     def binding(self, u: np.ndarray) -> dict[str, float]:
+        """The boxed parameters' values at one box point.
+
+        Parameters
+        ----------
+        u : numpy.ndarray
+            Box coordinates, shape (p,) (or (1, p)).
+
+        Returns
+        -------
+        dict of str to float
+            ``{key: value}`` for every key of :attr:`keys`.
+        """
         return {k: float(v) for k, v in zip(self.keys, self.values(u)[0])}
 
 
@@ -80,7 +147,26 @@ def open_intervals(intervals: Mapping[str, tuple[float, float]], n: int) -> tupl
     """Keys of ``intervals`` (an ``n``-mass chain) that the data leave open, so that they bound no
     box: a high end that is not finite, or a low end of 0 for a mass or stiffness (a fit's
     unbounded ``(0, inf)``).  :func:`parameter_box` refuses them; a caller that wants to say why
-    rather than fail asks here first."""
+    rather than fail asks here first.
+
+    Parameters
+    ----------
+    intervals : mapping of str to tuple of (float, float)
+        ``{key: (low, high)}`` in the parameters' units, e.g. :attr:`ChainFit.intervals
+        <analysis.identify.ChainFit.intervals>`.
+    n : int
+        Number of masses of the chain.
+
+    Returns
+    -------
+    tuple of str
+        The open keys, in the order of ``intervals``; empty when every interval bounds a box.
+
+    Raises
+    ------
+    ParameterKeyError
+        When a key with a low end of 0 does not name a parameter of an ``n``-mass chain.
+    """
     return tuple(k for k, (lo, hi) in intervals.items()
                  if not math.isfinite(hi) or (lo <= 0 and parse_key(k, n)[0] in _POSITIVE))
 
@@ -88,7 +174,30 @@ def open_intervals(intervals: Mapping[str, tuple[float, float]], n: int) -> tupl
 def parameter_box(device: Device, intervals: Mapping[str, tuple[float, float]]) -> ParameterBox:
     """Validate ``intervals`` (``{key: (low, high)}``) against ``device``; point intervals are
     dropped (they fix the parameter at that value), and every interval is clipped to the physical
-    range :class:`~analysis.Device` accepts (a fit's interval may reach beyond it)."""
+    range :class:`~analysis.Device` accepts (a fit's interval may reach beyond it).
+
+    Parameters
+    ----------
+    device : Device
+        The nominal device.
+    intervals : mapping of str to tuple of (float, float)
+        ``{key: (low, high)}`` in the parameters' units (kg, N/m, N s/m), finite with
+        ``0 <= low <= high``; ``low > 0`` for masses and stiffnesses.
+
+    Returns
+    -------
+    ParameterBox
+        The box of the intervals that are not points, on ``device`` with the point intervals'
+        values set.
+
+    Raises
+    ------
+    ValidationError
+        For an interval that is not finite, has ``low > high`` or a negative end, or starts at 0
+        for a mass or stiffness (or a fixed value that :class:`~analysis.Device` refuses).
+    ParameterKeyError
+        When a key does not name a parameter of ``device``'s chain.
+    """
     keys, lo, hi = [], [], []
     fixed = {}
     for key, iv in intervals.items():
@@ -113,7 +222,19 @@ def parameter_box(device: Device, intervals: Mapping[str, tuple[float, float]]) 
 
 @dataclass(frozen=True)
 class SearchTrace:
-    """Every point evaluated (box coordinates), its value, and the index of the smallest."""
+    """Every point evaluated (box coordinates), its value, and the index of the smallest.
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        Box coordinates of every evaluated point, in evaluation order, shape (E, p).
+    values : numpy.ndarray
+        The value at each point (``-inf`` where it could not be evaluated), shape (E,).
+    best : int
+        Index of the smallest value.
+    corner : bool
+        Whether the smallest value is at a corner of the box (every coordinate 0 or 1).
+    """
 
     points: np.ndarray
     values: np.ndarray
@@ -168,7 +289,32 @@ def _corners(rec: _Recorder, nominal: np.ndarray, corner_limit: int) -> None:
 def box_search(evaluate: Callable[[np.ndarray], np.ndarray], box: ParameterBox, *, corner_limit: int = 8,
                random: int = 64, local_starts: int = 2, local_iterations: int = 12,
                seed: int = 0) -> SearchTrace:
-    """Smallest value of ``evaluate`` (a batch of box points -> values) over the box (module doc)."""
+    """Smallest value of ``evaluate`` (a batch of box points -> values) over the box (module doc).
+
+    Parameters
+    ----------
+    evaluate : callable
+        ``evaluate(u) -> values``: box coordinates of shape (E, p) to values of shape (E,); a
+        ``nan`` counts as ``-inf`` (an unevaluable device is the worst).
+    box : ParameterBox
+        The box searched.
+    corner_limit : int, optional
+        Largest ``p`` for which all ``2^p`` corners are evaluated; above it, the screening
+        corner and its ``p`` single flips.
+    random : int, optional
+        Number of seeded uniform random points.
+    local_starts : int, optional
+        Number of distinct best points the local minimization starts from.
+    local_iterations : int, optional
+        L-BFGS-B iterations per start (at most twice as many function evaluations).
+    seed : int, optional
+        Seed of the random sample.
+
+    Returns
+    -------
+    SearchTrace
+        Every evaluated point (the nominal one first), its value and the smallest.
+    """
     p = box.dim
     rec = _Recorder(evaluate)
     nominal = box.coordinates(np.array([device_value(box.device, k) for k in box.keys]))

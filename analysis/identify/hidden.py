@@ -71,7 +71,23 @@ class HiddenHandle:
     """The detection test of the module doc: ``rss_merged`` and ``merged`` (theta of the
     problem's free keys) of the merged chain, ``statistic`` ``D`` and the ``critical`` value
     ``3 ln R``; ``detected`` when ``D > critical``; ``family`` the thetas and RSS of the scanned
-    chains (empty when detected)."""
+    chains (empty when detected).
+
+    Parameters
+    ----------
+    rss_merged : float
+        Weighted residual sum of squares of the merged chain.
+    merged : numpy.ndarray
+        The merged chain in log-parameters of the problem's free keys, shape (p,).
+    statistic : float
+        ``D = (RSS_merged - RSS) / s^2``.
+    critical : float
+        The BIC penalty ``3 ln R`` (``R`` real residuals).
+    family : tuple of numpy.ndarray
+        Log-parameters (shape (p,) each) of the scanned handle family; empty when detected.
+    family_rss : numpy.ndarray
+        RSS of each family member, shape (len(family),).
+    """
 
     rss_merged: float
     merged: np.ndarray
@@ -105,7 +121,26 @@ def _top_frequency(problem: FitProblem) -> float:
 
 
 def merged_fit(problem: FitProblem, theta: np.ndarray, nfev: int = 60) -> tuple[float, np.ndarray]:
-    """RSS and theta of the merged chain (module doc), started from the optimum ``theta``."""
+    """RSS and theta of the merged chain (module doc), started from the optimum ``theta``.
+
+    Parameters
+    ----------
+    problem : FitProblem
+        The fit's least-squares problem; its free keys include the handle's unknowns and
+        ``masses[1]``.
+    theta : numpy.ndarray
+        The optimum in log-parameters of ``problem.keys``, shape (p,).
+    nfev : int, optional
+        Largest number of residual evaluations of the refit.
+
+    Returns
+    -------
+    rss : float
+        Weighted residual sum of squares of the merged chain.
+    theta : numpy.ndarray
+        The merged chain in log-parameters of ``problem.keys``, shape (p,); the handle's
+        unknowns held at the merged values.
+    """
     chain = problem.chains(theta)
     total = float(chain.masses[0, 0] + chain.masses[0, 1])
     m0 = MERGED_SHARE * total
@@ -115,7 +150,24 @@ def merged_fit(problem: FitProblem, theta: np.ndarray, nfev: int = 60) -> tuple[
 
 
 def handle_family(problem: FitProblem, theta: np.ndarray) -> tuple[list[np.ndarray], np.ndarray]:
-    """The family scan of the module doc: thetas and RSS of the chains with ``m_0 = f M``."""
+    """The family scan of the module doc: thetas and RSS of the chains with ``m_0 = f M``.
+
+    Parameters
+    ----------
+    problem : FitProblem
+        The fit's least-squares problem; its free keys include the handle's unknowns and
+        ``masses[1]``.
+    theta : numpy.ndarray
+        The optimum in log-parameters of ``problem.keys``, shape (p,).
+
+    Returns
+    -------
+    thetas : list of numpy.ndarray
+        Log-parameters (shape (p,) each) of the ``len(FAMILY_SHARES) * FAMILY_MODES`` scanned
+        chains, shares outer, mode frequencies inner.
+    rss : numpy.ndarray
+        RSS of each, shape (len(thetas),).
+    """
     chain = problem.chains(theta)
     total = float(chain.masses[0, 0] + chain.masses[0, 1])
     w = np.concatenate([m.frequency for m in problem.measurements])
@@ -155,7 +207,22 @@ def adopt_best(problem: FitProblem, theta: np.ndarray, rss: float, hidden: Hidde
 
 def hidden_handle(problem: FitProblem, theta: np.ndarray, rss: float) -> HiddenHandle | None:
     """The detection test (module doc), with the family scan when the mode is not detected;
-    ``None`` when it does not apply (fewer than 2 masses, or a handle unknown held fixed)."""
+    ``None`` when it does not apply (fewer than 2 masses, or a handle unknown held fixed).
+
+    Parameters
+    ----------
+    problem : FitProblem
+        The fit's least-squares problem.
+    theta : numpy.ndarray
+        The optimum in log-parameters of ``problem.keys``, shape (p,).
+    rss : float
+        Weighted residual sum of squares at ``theta``.
+
+    Returns
+    -------
+    HiddenHandle or None
+        The test's result (with the family when not detected); ``None`` when it does not apply.
+    """
     if not _applies(problem):
         return None
     R, p = problem.n_residuals, len(problem.keys)

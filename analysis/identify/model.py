@@ -68,6 +68,30 @@ def continuous_response(params: ChainParameters, w: np.ndarray, quantity: str = 
 
     This is a numerical kernel: one sweep keeps the continued-fraction values ``L_i`` and the
     transfer ratios together, as every quantity reads them (splitting it would repeat the sweep).
+
+    Parameters
+    ----------
+    params : ChainParameters
+        ``P`` chains of ``n`` masses.
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (F,).
+    quantity : str, optional
+        ``"actuator"`` (m/N), ``"handle"`` (m/N) or ``"gauge"`` (N/N) (module doc).
+    boundary : str, optional
+        ``"free"`` or ``"clamped"`` (handle held).
+    sensor_element : int, optional
+        The element of the gauge, ``0 <= sensor_element < n - 1`` (``gauge`` only).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex response in the quantity's unit, shape (P, F).
+
+    Raises
+    ------
+    ValidationError
+        For an unknown quantity or boundary, a clamped handle or 1-mass chain, or a gauge
+        element outside the chain.
     """
     n = params.n
     check_quantity(quantity, boundary, n, sensor_element)
@@ -204,6 +228,37 @@ def sampled_response(params: ChainParameters, w: np.ndarray, sample_time: float,
     ``e_i = e^{lam_i T}``, times ``z^{-d}``.  This is the exact ZOH discretization (the same
     ``Phi = e^{AT}``, ``Gamma = int_0^T e^{At} B dt`` as :func:`analysis.chain.discretize_zoh`),
     evaluated in O(F N) per chain after the eigendecomposition.
+
+    Parameters
+    ----------
+    params : ChainParameters
+        ``P`` chains of ``n`` masses.
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (F,).
+    sample_time : float
+        Sample period T [s].
+    quantity : str, optional
+        ``"actuator"`` (m/N), ``"handle"`` (m/N) or ``"gauge"`` (N/N) (module doc).
+    boundary : str, optional
+        ``"free"`` or ``"clamped"`` (handle held).
+    sensor_element : int, optional
+        The element of the gauge, ``0 <= sensor_element < n - 1`` (``gauge`` only).
+    delay_samples : int, optional
+        Output delay d [samples].
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex response in the quantity's unit, shape (P, F).
+
+    Raises
+    ------
+    ValidationError
+        For an unknown quantity or boundary, a clamped handle or 1-mass chain, or a gauge
+        element outside the chain.
+    numpy.linalg.LinAlgError
+        When the eigendecomposition of a chain's state matrix fails or its eigenvector matrix is
+        singular (a defective state matrix).
     """
     A, B, Cd, Ci = state_space(params, quantity, boundary, sensor_element)
     T = float(sample_time)
@@ -226,7 +281,36 @@ def sampled_response(params: ChainParameters, w: np.ndarray, sample_time: float,
 
 def response(params: ChainParameters, w: np.ndarray, quantity: str = "actuator", boundary: str = "free",
              sensor_element: int = 0, sample_time: float | None = None, delay_samples: int = 0) -> np.ndarray:
-    """:func:`continuous_response` when ``sample_time`` is ``None``, else :func:`sampled_response`."""
+    """:func:`continuous_response` when ``sample_time`` is ``None``, else :func:`sampled_response`.
+
+    Parameters
+    ----------
+    params : ChainParameters
+        ``P`` chains of ``n`` masses.
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (F,).
+    quantity : str, optional
+        ``"actuator"`` (m/N), ``"handle"`` (m/N) or ``"gauge"`` (N/N) (module doc).
+    boundary : str, optional
+        ``"free"`` or ``"clamped"`` (handle held).
+    sensor_element : int, optional
+        The element of the gauge, ``0 <= sensor_element < n - 1`` (``gauge`` only).
+    sample_time : float or None, optional
+        Sample period [s] of a response through the sampled controller; ``None``: continuous.
+    delay_samples : int, optional
+        Output delay [samples] (sampled only).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex response in the quantity's unit, shape (P, F).
+
+    Raises
+    ------
+    ValidationError
+        For an unknown quantity or boundary, a clamped handle or 1-mass chain, or a gauge
+        element outside the chain.
+    """
     if sample_time is None:
         return continuous_response(params, w, quantity, boundary, sensor_element)
     return sampled_response(params, w, sample_time, quantity, boundary, sensor_element, delay_samples)

@@ -66,14 +66,47 @@ def parse_key(key: str, n: int) -> tuple[str, int]:
 
 def parameter_keys(n: int, ground: Iterable[int] | None = None) -> list[str]:
     """Keys of an ``n``-mass chain: masses, stiffnesses, dampings, then the selected ground
-    dampings (``ground=None``: all ``n``)."""
+    dampings (``ground=None``: all ``n``).
+
+    Parameters
+    ----------
+    n : int
+        Number of masses of the chain.
+    ground : iterable of int or None, optional
+        Indices (0-based, handle 0) of the masses whose damper to ground is a parameter;
+        ``None`` for all ``n``.  Duplicates are dropped and the indices sorted.
+
+    Returns
+    -------
+    list of str
+        ``n`` mass keys, ``n - 1`` stiffness keys, ``n - 1`` damping keys and the selected
+        ground-damping keys, in that order (e.g. ``"masses[0]"``).
+    """
     gs = range(n) if ground is None else sorted(set(int(g) for g in ground))
     return ([f"masses[{i}]" for i in range(n)] + [f"stiffnesses[{i}]" for i in range(n - 1)]
             + [f"dampings[{i}]" for i in range(n - 1)] + [f"ground_dampings[{i}]" for i in gs])
 
 
 def device_value(device: Device, key: str) -> float:
-    """The value of one parameter of ``device``."""
+    """The value of one parameter of ``device``.
+
+    Parameters
+    ----------
+    device : Device
+        The chain.
+    key : str
+        A parameter key such as ``"masses[0]"`` or ``"ground_dampings[3]"`` (module doc).
+
+    Returns
+    -------
+    float
+        The parameter's value in its unit: kg, N/m or N s/m.
+
+    Raises
+    ------
+    ParameterKeyError
+        When ``key`` does not name a parameter of ``device``'s chain (by :func:`parse_key`).
+    """
     name, i = parse_key(key, device.n)
     return float(getattr(device, name)[i])
 
@@ -84,7 +117,27 @@ def device_values(device: Device, keys: Iterable[str]) -> np.ndarray:
 
 
 def device_with(device: Device, values: Mapping[str, float]) -> Device:
-    """A copy of ``device`` with the given parameters changed (validated by :class:`Device`)."""
+    """A copy of ``device`` with the given parameters changed (validated by :class:`Device`).
+
+    Parameters
+    ----------
+    device : Device
+        The chain to copy; its other settings (sensor element, sample time, band) are kept.
+    values : mapping of str to float
+        ``{key: value}`` of the parameters to change, in kg, N/m or N s/m.
+
+    Returns
+    -------
+    Device
+        The changed copy; ``device`` itself is not modified.
+
+    Raises
+    ------
+    ParameterKeyError
+        When a key does not name a parameter of the chain (by :func:`parse_key`).
+    ValidationError
+        When a new value is outside the range :class:`Device` accepts.
+    """
     arrays = {f: np.array(getattr(device, f), dtype=float) for f in FIELDS}
     for key, v in values.items():
         name, i = parse_key(key, device.n)
@@ -95,7 +148,19 @@ def device_with(device: Device, values: Mapping[str, float]) -> Device:
 @dataclass(frozen=True)
 class ChainParameters:
     """``P`` chains of ``n`` masses as arrays: ``masses`` (P, n), ``stiffnesses`` (P, n-1),
-    ``dampings`` (P, n-1), ``ground_dampings`` (P, n)."""
+    ``dampings`` (P, n-1), ``ground_dampings`` (P, n).
+
+    Parameters
+    ----------
+    masses : numpy.ndarray
+        Masses [kg], handle first (column 0), actuator last, shape (P, n).
+    stiffnesses : numpy.ndarray
+        Element stiffnesses [N/m], element ``i`` between mass ``i`` and ``i + 1``, shape (P, n - 1).
+    dampings : numpy.ndarray
+        Element dampings [N s/m], shape (P, n - 1).
+    ground_dampings : numpy.ndarray
+        Dampings from each mass to ground [N s/m], shape (P, n).
+    """
 
     masses: np.ndarray
     stiffnesses: np.ndarray
@@ -112,12 +177,45 @@ class ChainParameters:
 
     @classmethod
     def from_device(cls, device: Device) -> ChainParameters:
+        """The one chain of ``device`` as a batch of size 1 (the arrays are copies).
+
+        Parameters
+        ----------
+        device : Device
+            The chain.
+
+        Returns
+        -------
+        ChainParameters
+            ``P = 1`` chain with ``device``'s masses, stiffnesses, dampings and ground dampings.
+        """
         return cls(device.masses[None, :].copy(), device.stiffnesses[None, :].copy(),
                    device.dampings[None, :].copy(), device.ground_dampings[None, :].copy())
 
     @classmethod
     def from_rows(cls, keys: list[str], rows: np.ndarray, base: ChainParameters) -> ChainParameters:
-        """``base`` (one chain) broadcast to ``len(rows)`` chains with ``keys`` set from ``rows``."""
+        """``base`` (one chain) broadcast to ``len(rows)`` chains with ``keys`` set from ``rows``.
+
+        Parameters
+        ----------
+        keys : list of str
+            The parameter keys set from the columns of ``rows`` (module doc).
+        rows : numpy.ndarray
+            Parameter values (kg, N/m, N s/m), shape (P, len(keys)); one row (shape (len(keys),))
+            is taken as ``P = 1``.
+        base : ChainParameters
+            Its first chain supplies every parameter not in ``keys``.
+
+        Returns
+        -------
+        ChainParameters
+            ``P`` chains of ``base.n`` masses, new arrays.
+
+        Raises
+        ------
+        ParameterKeyError
+            When a key does not name a parameter of an ``n``-mass chain (by :func:`parse_key`).
+        """
         rows = np.atleast_2d(np.asarray(rows, dtype=float))
         P = rows.shape[0]
         arrays = {f: np.repeat(getattr(base, f)[:1], P, axis=0) for f in FIELDS}
@@ -128,7 +226,28 @@ class ChainParameters:
 
     def device(self, row: int, template: Device | None = None, **kwargs) -> Device:
         """Chain ``row`` as a :class:`Device` (sensor element, sample time and band from
-        ``template`` or ``kwargs``)."""
+        ``template`` or ``kwargs``).
+
+        Parameters
+        ----------
+        row : int
+            Index of the chain in the batch, ``0 <= row < P``.
+        template : Device or None, optional
+            A device whose other settings are kept (:meth:`Device.replace`); ``None``: a new
+            :class:`Device` from the chain and ``kwargs``.
+        **kwargs
+            Further :class:`Device` fields, e.g. ``sensor_element``, ``sample_time``, ``band_min``.
+
+        Returns
+        -------
+        Device
+            The chain as a validated device.
+
+        Raises
+        ------
+        ValidationError
+            When a value is outside the range :class:`Device` accepts.
+        """
         data = {f: getattr(self, f)[row] for f in FIELDS}
         if template is not None:
             return template.replace(**data, **kwargs)

@@ -61,7 +61,21 @@ _TOL = 1e-10
 
 
 def profile_critical_value(dof: int, level: float = 0.95) -> float:
-    """``F_{1,dof}(level) = t_{dof}((1 + level) / 2)^2``: the bound on ``(RSS_p - RSS) / s^2``."""
+    """``F_{1,dof}(level) = t_{dof}((1 + level) / 2)^2``: the bound on ``(RSS_p - RSS) / s^2``.
+
+    Parameters
+    ----------
+    dof : int
+        Residual degrees of freedom ``R - p`` (taken as at least 1).
+    level : float, optional
+        Confidence level in (0, 1), default 0.95.
+
+    Returns
+    -------
+    float
+        The ``level`` quantile of the F distribution with (1, ``dof``) degrees of freedom
+        (about 3.84 for a large ``dof`` at 95 %).
+    """
     return float(stats.f.ppf(level, 1, max(int(dof), 1)))
 
 
@@ -77,7 +91,25 @@ class ProfileBound:
 
 class Profiler:
     """Profile intervals of the free parameters of ``problem`` around the optimum ``theta``
-    (module doc); ``cov`` is the Wald covariance (for the first step and the predictor)."""
+    (module doc); ``cov`` is the Wald covariance (for the first step and the predictor).
+
+    Parameters
+    ----------
+    problem : FitProblem
+        The least-squares problem; its free keys are profiled.
+    theta : numpy.ndarray
+        The optimum in log-parameters, shape (p,).
+    rss : float
+        The weighted residual sum of squares at ``theta``.
+    cov : numpy.ndarray
+        Wald covariance of ``theta``, shape (p, p) (may be empty, shape (0, 0)).
+    extra_starts : tuple of numpy.ndarray, optional
+        Further full ``theta`` vectors (shape (p,)) from which a point past the target is solved
+        again (e.g. other optima of the multi-start).
+    reference : float or None, optional
+        RSS the likelihood ratio is referred to when higher than ``rss``
+        (:mod:`analysis.identify.hidden`); ``None``: ``rss``.
+    """
 
     def __init__(self, problem: FitProblem, theta: np.ndarray, rss: float, cov: np.ndarray,
                  extra_starts: tuple[np.ndarray, ...] = (), reference: float | None = None) -> None:
@@ -98,7 +130,25 @@ class Profiler:
         self.extra_starts = tuple(np.asarray(x, float) for x in extra_starts)
 
     def conditional(self, j: int, tj: float, start: np.ndarray) -> tuple[float, np.ndarray]:
-        """``RSS_p(tj)`` and the other parameters at it, from ``start``."""
+        """``RSS_p(tj)`` and the other parameters at it, from ``start``.
+
+        Records the solve, and the point as :attr:`best_theta` when it fits better than the
+        optimum.
+
+        Parameters
+        ----------
+        j : int
+            Index of the profiled free parameter.
+        tj : float
+            The value of ``theta_j`` held (log of the parameter).
+        start : numpy.ndarray
+            Start of the other log-parameters, shape (p - 1,); clipped into the physical range.
+
+        Returns
+        -------
+        tuple of (float, numpy.ndarray)
+            The profile RSS at ``tj`` and the other log-parameters there, shape (p - 1,).
+        """
         others = np.arange(self.theta.size) != j
         full = np.empty(self.theta.size)
         full[j] = tj
@@ -111,6 +161,18 @@ class Profiler:
         return rss, full[others]
 
     def tau(self, rss: float) -> float:
+        """The profile t statistic's magnitude ``sqrt(max(RSS_p - reference, 0) / s^2)``.
+
+        Parameters
+        ----------
+        rss : float
+            A profile RSS.
+
+        Returns
+        -------
+        float
+            ``|tau|`` (>= 0), compared with :attr:`target`.
+        """
         return math.sqrt(max(rss - self.reference, 0.0) / self.s2)
 
     def _slope(self, j: int) -> np.ndarray:
@@ -119,7 +181,21 @@ class Profiler:
         return np.delete(c[:, j] / c[j, j], j) if ok else np.zeros(self.theta.size - 1)
 
     def side(self, j: int, sign: int) -> ProfileBound:
-        """The bound of parameter ``j`` on the side ``sign`` (+1 upper, -1 lower)."""
+        """The bound of parameter ``j`` on the side ``sign`` (+1 upper, -1 lower).
+
+        Parameters
+        ----------
+        j : int
+            Index of the free parameter.
+        sign : int
+            ``+1`` for the upper bound, ``-1`` for the lower.
+
+        Returns
+        -------
+        ProfileBound
+            ``theta`` of the bound (``sign * inf`` and ``bounded=False`` when the data do not
+            bound it) and the number of conditional solves.
+        """
         before = self.solves
         limit = (self.hi[j] - self.theta[j]) if sign > 0 else (self.theta[j] - self.lo[j])
         sd = math.sqrt(self.cov[j, j]) if self.cov.shape[0] and np.isfinite(self.cov[j, j]) else 0.0
@@ -168,7 +244,18 @@ class Profiler:
         return da + ((self.target - ta) / (tb - ta) if tb > ta else 0.5) * (db - da)
 
     def interval(self, j: int) -> tuple[ProfileBound, ProfileBound]:
-        """Lower and upper bound of free parameter ``j``."""
+        """Lower and upper bound of free parameter ``j``.
+
+        Parameters
+        ----------
+        j : int
+            Index of the free parameter.
+
+        Returns
+        -------
+        tuple of (ProfileBound, ProfileBound)
+            The lower and the upper bound (:meth:`side`).
+        """
         return self.side(j, -1), self.side(j, +1)
 
 

@@ -14,7 +14,29 @@ __all__ = ["ChainFit", "OrderSelection", "Parameter"]
 
 @dataclass(frozen=True)
 class Parameter:
-    """One row of the parameter table."""
+    """One row of the parameter table.
+
+    Parameters
+    ----------
+    key : str
+        The parameter key, e.g. ``"masses[0]"`` (:mod:`analysis.identify.params`).
+    value : float
+        The fitted (or fixed) value [kg, N/m or N s/m].
+    std_error : float
+        Absolute standard error by the delta method, ``value * sigma_log``, in the value's unit;
+        0 for a fixed parameter.
+    low : float
+        Lower end of the 95 % interval (Wald: ``exp(theta - 1.96 sigma)``); 0 when unbounded.
+    high : float
+        Upper end of the 95 % interval (Wald: ``exp(theta + 1.96 sigma)``); ``inf`` when unbounded.
+    fixed : bool
+        Whether the value was given rather than fitted.
+    identifiable : bool
+        Whether the data determine it (not in :attr:`ChainFit.non_identifiable`).
+    method : str, optional
+        How the interval was found (an entry of :attr:`ChainFit.interval_methods`), default
+        ``"wald"``.
+    """
 
     key: str
     value: float
@@ -36,7 +58,7 @@ class ChainFit:
         The fitted :class:`~analysis.Device`: the least-squares optimum, or, when the handle mode
         is not detected, the chain with the handle merged into mass 1 (the BIC's choice,
         :mod:`analysis.identify.hidden`); ``values``, ``responses`` and the RSS are its own.
-    keys, values, std_errors, lower, upper, fixed:
+    keys, values, std_errors, log_std, lower, upper, fixed:
         The parameter table, one entry per key (fixed parameters have zero error and a point
         interval).  ``log_std`` is the standard error of ``log(value)``.
     free_keys, covariance, correlation:
@@ -51,6 +73,14 @@ class ChainFit:
         Keys judged not identifiable from these measurements, and for each what would fix it.
     warnings:
         Human-readable notes (non-convergence, non-identifiable parameters, ...).
+    measurements:
+        The measurements fitted, in the order of ``responses``.
+    converged:
+        Whether the least-squares solver reported convergence at the optimum.
+    evaluations:
+        Number of residual evaluations of the solver runs.
+    starts:
+        Number of start chains tried by the multi-start.
     interval_methods:
         How each interval was found: ``"wald"`` (``exp(theta +- 1.96 sigma)`` from ``J^T J``),
         ``"profile"`` (profile likelihood, :mod:`analysis.identify.profile`), ``"profile
@@ -104,12 +134,48 @@ class ChainFit:
                                                       self.upper, self.fixed, methods))
 
     def value(self, key: str) -> float:
+        """The fitted (or fixed) value of one parameter.
+
+        Parameters
+        ----------
+        key : str
+            A key of :attr:`keys`, e.g. ``"ground_dampings[3]"``.
+
+        Returns
+        -------
+        float
+            Its value [kg, N/m or N s/m].
+
+        Raises
+        ------
+        ValueError
+            When ``key`` is not one of :attr:`keys` (from ``tuple.index``).
+        """
         return float(self.values[self.keys.index(key)])
 
 
 @dataclass(frozen=True, eq=False)
 class OrderSelection:
-    """Fits of ``n = 1..N`` masses with their criteria (lower AIC/BIC is better)."""
+    """Fits of ``n = 1..N`` masses with their criteria (lower AIC/BIC is better).
+
+    Parameters
+    ----------
+    n : numpy.ndarray
+        The numbers of masses fitted, ascending, int, shape (K,).
+    aic : numpy.ndarray
+        ``AIC = R ln(RSS/R) + 2p`` of each order, ``nan`` where the fit failed, shape (K,).
+    bic : numpy.ndarray
+        ``BIC = R ln(RSS/R) + p ln R`` of each order, ``nan`` where the fit failed, shape (K,).
+    residual : numpy.ndarray
+        RMS weighted residual of each order (:attr:`ChainFit.residual`), ``nan`` where the fit
+        failed, shape (K,).
+    fits : tuple of (ChainFit or None)
+        The fit of each order, ``None`` where it failed.
+    errors : tuple of (str or None)
+        Why an order could not be fitted, ``None`` where it was.
+    best_bic : int or None
+        The number of masses with the lowest BIC; ``None`` when no order was fitted.
+    """
 
     n: np.ndarray
     aic: np.ndarray

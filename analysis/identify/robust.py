@@ -46,6 +46,31 @@ class RobustStiffness:
     ``binding`` (the boxed parameters' values) are where the limit binds, ``frequency`` the
     binding frequency (``nan`` for the sampled-data limit).  ``points`` (E, p) and ``values`` are
     every device evaluated by the search (parameter values of ``keys``, cheap limits).
+
+    Parameters
+    ----------
+    bc : float
+        The coupling damping b_c [N s/m] the limit is for.
+    kc : float or None
+        The robust k_c [N/m]; ``None`` when some device in the box admits no k_c >= 0.
+    device : Device
+        The device where the limit binds.
+    binding : dict of str to float
+        The boxed parameters' values at ``device``.
+    frequency : float
+        The binding frequency [rad/s]; ``nan`` for the sampled-data limit.
+    nominal_kc : float or None
+        The same limit for the nominal device [N/m]; ``None`` when it admits no k_c >= 0.
+    corner : bool
+        Whether the binding device is at a corner of the box.
+    evaluations : int
+        Number of devices evaluated by the search.
+    keys : tuple of str
+        The boxed parameter keys (``p`` of them).
+    points : numpy.ndarray
+        Parameter values of ``keys`` of every evaluated device [kg, N/m or N s/m], shape (E, p).
+    values : numpy.ndarray
+        The search's (cheap) limit of each evaluated device [N/m], shape (E,).
     """
 
     bc: float
@@ -66,7 +91,29 @@ class RobustDamping:
     """Robust feasible b_c interval ``[low, high]`` for ``mc`` (eq. 21); ``None`` when empty.
 
     ``low_device`` / ``high_device`` are the devices where each edge binds (``*_binding`` their
-    boxed parameter values)."""
+    boxed parameter values).
+
+    Parameters
+    ----------
+    mc : float
+        The coupling mass m_c [kg] the interval is for.
+    low : float or None
+        Lower edge of the robust b_c interval [N s/m]; ``None`` when the interval is empty.
+    high : float or None
+        Upper edge [N s/m] (may be ``inf``); ``None`` when the interval is empty.
+    low_device : Device
+        The device where the lower edge binds.
+    high_device : Device
+        The device where the upper edge binds.
+    low_binding : dict of str to float
+        The boxed parameters' values at ``low_device``.
+    high_binding : dict of str to float
+        The boxed parameters' values at ``high_device``.
+    nominal : tuple of (float or None, float or None)
+        The nominal device's feasible ``(low, high)`` [N s/m]; ``(None, None)`` when empty.
+    evaluations : int
+        Number of devices evaluated by the two searches.
+    """
 
     mc: float
     low: float | None
@@ -129,6 +176,36 @@ def robust_max_stiffness(device: Device, bc: float, intervals: Mapping[str, tupl
     Example (Adams et al., section VI): the HBFD with ``ground_dampings[3]`` (their b4) in
     ``[1.2, 5]`` N s/m and ``b_c = 100`` N s/m gives 49.15 kN/m, the b4 = 1.2 value, against
     117.1 kN/m for the nominal b4 = 5.
+
+    Parameters
+    ----------
+    device : Device
+        The nominal device (impedance display).
+    bc : float
+        The coupling damping b_c [N s/m].
+    intervals : mapping of str to tuple of (float, float)
+        ``{key: (low, high)}`` in the parameters' units (kg, N/m, N s/m), e.g. a fit's
+        :attr:`~analysis.identify.ChainFit.intervals`.
+    seed : int, optional
+        Seed of the random sample of the search.
+    random : int, optional
+        Number of random points of the search.
+    corner_limit : int, optional
+        Largest number of boxed parameters for which every corner is evaluated.
+
+    Returns
+    -------
+    RobustStiffness
+        The robust k_c [N/m] with its binding device and frequency, the nominal k_c and the
+        search's points.
+
+    Raises
+    ------
+    ValidationError
+        For an interval that :func:`~analysis.identify.parameter_box` refuses (not finite,
+        ``low > high``, or a mass or stiffness interval starting at 0).
+    ParameterKeyError
+        When a key does not name a parameter of ``device``'s chain.
     """
     box = parameter_box(device, intervals)
     trace = box_search(_each(box, lambda d: _kc_on_grid(d, bc)), box, seed=seed, random=random,
@@ -157,7 +234,41 @@ def robust_feasible_damping(device: Device, mc: float, kp: float, kd: float,
                             intervals: Mapping[str, tuple[float, float]], *, seed: int = 0,
                             random: int = 64, corner_limit: int = 8) -> RobustDamping:
     """b_c interval satisfying eq. (21) for every device in the box: ``[max low, min high]``
-    (each device's feasible set is an interval, so the robust set is their intersection)."""
+    (each device's feasible set is an interval, so the robust set is their intersection).
+
+    Parameters
+    ----------
+    device : Device
+        The nominal device (admittance display).
+    mc : float
+        The coupling mass m_c [kg].
+    kp : float
+        Proportional gain k_p of the admittance display's PD controller [N/m].
+    kd : float
+        Derivative gain k_d [N s/m].
+    intervals : mapping of str to tuple of (float, float)
+        ``{key: (low, high)}`` in the parameters' units (kg, N/m, N s/m).
+    seed : int, optional
+        Seed of the random sample (the upper edge's search uses ``seed + 1``).
+    random : int, optional
+        Number of random points of each search.
+    corner_limit : int, optional
+        Largest number of boxed parameters for which every corner is evaluated.
+
+    Returns
+    -------
+    RobustDamping
+        The robust b_c interval [N s/m] (``None`` edges when empty) with the binding devices.
+
+    Raises
+    ------
+    ValidationError
+        For an interval that :func:`~analysis.identify.parameter_box` refuses (not finite,
+        ``low > high``, or a mass or stiffness interval starting at 0), or for ``kp`` or ``kd``
+        outside its physical range.
+    ParameterKeyError
+        When a key does not name a parameter of ``device``'s chain.
+    """
     box = parameter_box(device, intervals)
 
     def refined(d: Device) -> tuple[float, float]:
@@ -189,6 +300,39 @@ def robust_critical_stiffness(device: Device, bc: float, intervals: Mapping[str,
     Each evaluation is an exact scan and bisection of the closed-loop spectral radius (about
     0.5 s for the HBFD), so the search is lighter than for eq. (9): screening, corners up to
     ``corner_limit`` parameters, ``random`` seeded samples and one short local minimization.
+
+    Parameters
+    ----------
+    device : Device
+        The nominal device.
+    bc : float
+        The coupling damping b_c [N s/m].
+    intervals : mapping of str to tuple of (float, float)
+        ``{key: (low, high)}`` in the parameters' units (kg, N/m, N s/m).
+    delay_samples : int, optional
+        Computation delay [samples].
+    seed : int, optional
+        Seed of the random sample of the search.
+    random : int, optional
+        Number of random points of the search.
+    corner_limit : int, optional
+        Largest number of boxed parameters for which every corner is evaluated.
+    **kwargs
+        Keyword arguments of :func:`analysis.sampled.critical_stiffness`.
+
+    Returns
+    -------
+    RobustStiffness
+        The smallest critical k_c [N/m] (``None`` when not positive), its binding device, the
+        nominal critical k_c and the search's points; ``frequency`` is ``nan``.
+
+    Raises
+    ------
+    ValidationError
+        For an interval that :func:`~analysis.identify.parameter_box` refuses (not finite,
+        ``low > high``, or a mass or stiffness interval starting at 0).
+    ParameterKeyError
+        When a key does not name a parameter of ``device``'s chain.
     """
     from analysis.sampled import critical_stiffness
 

@@ -58,7 +58,22 @@ START_RATIO = 0.05
 
 def spectrum_from_chain(masses, stiffnesses) -> tuple[np.ndarray, np.ndarray]:
     """Undamped poles (free-free, nonzero) and zeros (actuator held) of the actuator
-    driving-point compliance, rad/s, both ascending (the forward map of :func:`chain_from_spectrum`)."""
+    driving-point compliance, rad/s, both ascending (the forward map of :func:`chain_from_spectrum`).
+
+    Parameters
+    ----------
+    masses : array_like
+        Masses [kg], handle first, actuator last, shape (n,).
+    stiffnesses : array_like
+        Element stiffnesses [N/m], shape (n - 1,).
+
+    Returns
+    -------
+    poles : numpy.ndarray
+        The ``n - 1`` nonzero free-free resonances [rad/s], ascending.
+    zeros : numpy.ndarray
+        The ``n - 1`` antiresonances (actuator held) [rad/s], ascending.
+    """
     m = np.asarray(masses, float)
     k = np.asarray(stiffnesses, float)
     n = m.size
@@ -77,6 +92,27 @@ def chain_from_spectrum(poles, zeros, total_mass: float) -> tuple[np.ndarray, np
     """Masses (handle first) and stiffnesses of the undamped chain with these poles and zeros
     (module doc).  ``poles`` and ``zeros`` are the ``n - 1`` nonzero resonances and the
     ``n - 1`` antiresonances (rad/s), strictly interlaced ``z_1 < p_1 < z_2 < ...``.
+
+    Parameters
+    ----------
+    poles : array_like
+        The ``n - 1`` nonzero resonances [rad/s] (sorted here).
+    zeros : array_like
+        The ``n - 1`` antiresonances [rad/s] (sorted here).
+    total_mass : float
+        Total mass ``M`` of the chain [kg].
+
+    Returns
+    -------
+    masses : numpy.ndarray
+        Masses [kg], handle first, shape (n,).
+    stiffnesses : numpy.ndarray
+        Element stiffnesses [N/m], shape (n - 1,).
+
+    Raises
+    ------
+    ValueError
+        When the numbers of poles and zeros differ, or they do not interlace.
     """
     p = np.sort(np.asarray(poles, float))
     z = np.sort(np.asarray(zeros, float))

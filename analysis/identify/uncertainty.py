@@ -157,6 +157,33 @@ def profile_selection(mode: str, keys: Sequence[str], wide: np.ndarray, q: np.nd
     flat valley, and at a degenerate point of it -- a handle mass shrunk to nothing -- the
     correlations do not show the link).  Otherwise the parameters that fail the curvature check
     (``|q - 1| > CURVATURE_TOLERANCE`` on a side) are profiled.
+
+    Parameters
+    ----------
+    mode : str
+        ``"auto"``, ``"wald"`` or ``"profile"`` (:data:`INTERVAL_MODES`).
+    keys : sequence of str
+        The free parameter keys (``p`` of them).
+    wide : numpy.ndarray
+        Whether each free parameter is not identifiable, bool, shape (p,).
+    q : numpy.ndarray
+        Curvature ratios (lower, upper) of each free parameter
+        (:func:`~analysis.identify.profile.curvature_ratios`), shape (p, 2).
+    corr : numpy.ndarray
+        Correlation matrix of the free log-parameters, shape (p, p); the rule above does not
+        read it.
+
+    Returns
+    -------
+    profiled : list of int
+        Indices of the free parameters whose interval is profiled.
+    unbounded : list of int
+        Indices of those reported unbounded, ``(0, inf)``.
+
+    Raises
+    ------
+    ValidationError
+        When ``mode`` is not one of :data:`INTERVAL_MODES`.
     """
     if mode not in INTERVAL_MODES:
         from analysis.errors import ValidationError
