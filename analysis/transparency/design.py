@@ -114,6 +114,21 @@ class WallDesign:
 
     The parts: ``plant``, ``loops``, ``index`` (``J``), ``robustness`` (``||L||_inf``), ``search``
     (curves and optimum) and ``step`` (step response).
+
+    Parameters
+    ----------
+    settings : WallSettings or None, optional
+        The design; ``None`` for the defaults of :class:`WallSettings`.
+    device : Device or None, optional
+        A device chain read at the handle (sets ``plant = "chain"`` unless ``plant`` is given
+        as a keyword); ignored when the resulting ``plant`` is ``"rigid"``.
+    **params
+        :class:`WallSettings` fields that replace those of ``settings``.
+
+    Raises
+    ------
+    ValidationError
+        When ``plant = "chain"`` without a device, or a field is out of its range.
     """
 
     def __init__(self, settings: WallSettings | None = None, *, device: Device | None = None, **params):
@@ -135,6 +150,20 @@ class WallDesign:
 
     @classmethod
     def from_settings(cls, settings: WallSettings, device: Device | None = None) -> WallDesign:
+        """The design of a settings record (the profile's ``transparency`` section).
+
+        Parameters
+        ----------
+        settings : WallSettings
+            The design.
+        device : Device or None, optional
+            The profile's device chain, used when ``settings.plant`` is ``"chain"``.
+
+        Returns
+        -------
+        WallDesign
+            ``WallDesign(settings, device=device)``.
+        """
         return cls(settings, device=device)
 
     @property
@@ -143,15 +172,55 @@ class WallDesign:
         return self.settings.kc
 
     def weight(self, s: np.ndarray) -> np.ndarray:
-        """``w1(s) = (w_c/(s + w_c))^r`` (eq. 11)."""
+        """``w1(s) = (w_c/(s + w_c))^r`` (eq. 11).
+
+        Parameters
+        ----------
+        s : numpy.ndarray
+            Complex frequencies [rad/s], any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            The weight (dimensionless), the shape of ``s``.
+        """
         return weight(self.settings, s)
 
     def wall_admittance(self, s: np.ndarray) -> np.ndarray:
-        """``Y_v(s) = s/(K + B s)`` (eq. 8)."""
+        """``Y_v(s) = s/(K + B s)`` (eq. 8).
+
+        Parameters
+        ----------
+        s : numpy.ndarray
+            Complex frequencies [rad/s], any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            The virtual wall's admittance [m/(N s)], complex, the shape of ``s``.
+        """
         return wall_admittance(self.settings, s)
 
     def closed_loop_poles(self, bc: float, hold: str | None = None) -> np.ndarray:
-        """Closed-loop poles (rad/s) for a rational hold, or ``log(z)/T`` for ``discrete``."""
+        """Closed-loop poles (rad/s) for a rational hold, or ``log(z)/T`` for ``discrete``.
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m], finite.
+        hold : str or None, optional
+            A rational hold model or ``"discrete"``; ``None`` for the settings' hold.
+
+        Returns
+        -------
+        numpy.ndarray
+            Poles [rad/s], complex, shape (N,) (N the loop's order).
+
+        Raises
+        ------
+        ValidationError
+            When the hold is ``"zoh"`` (infinitely many poles) or ``bc`` is not finite.
+        """
         hold = hold or self.settings.hold
         if hold == "zoh":
             raise ValidationError("hold", "a rational hold or 'discrete' (zoh has infinitely many poles)", hold)
@@ -159,35 +228,177 @@ class WallDesign:
 
     # -- J (eq. 10-11) ----------------------------------------------------------------------------
     def index_result(self, bc: float, method: str = "auto", per_decade: float = 8.0, order: int = 16) -> IndexResult:
-        """``J(B_c)`` (eq. 11) with its status; ``method`` ``auto``/``lyapunov``/``quadrature``."""
+        """``J(B_c)`` (eq. 11) with its status; ``method`` ``auto``/``lyapunov``/``quadrature``.
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m], finite.
+        method : str, optional
+            ``"auto"`` (Lyapunov for a rational hold, else quadrature), ``"lyapunov"`` or
+            ``"quadrature"``.
+        per_decade : float, optional
+            Quadrature panels per decade.
+        order : int, optional
+            Gauss-Legendre points per panel.
+
+        Returns
+        -------
+        IndexResult
+            ``J``, whether it is finite and why not, the method and the number of nodes.
+
+        Raises
+        ------
+        ValidationError
+            When ``bc`` is not finite or ``method`` does not fit the hold
+            (:meth:`TransparencyIndex.index_result`).
+        """
         return self.index.index_result(bc, method, per_decade, order)
 
     def performance_index(self, bc: float) -> float:
-        """``J(B_c)`` of eq. (11); ``inf`` when not finite (see :meth:`index_result` for why)."""
+        """``J(B_c)`` of eq. (11); ``inf`` when not finite (see :meth:`index_result` for why).
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m], finite.
+
+        Returns
+        -------
+        float
+            ``J`` [(m/s/N)^2 rad/s], or ``inf``.
+        """
         return self.index.performance_index(bc)
 
     def quadrature_nodes(self, bcs: np.ndarray, per_decade: float = 8.0, order: int = 16,
                          tail_eps: float = 1e-4) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Nodes/weights of the ``J`` quadrature (:meth:`TransparencyIndex.quadrature_nodes`)."""
+        """Nodes/weights of the ``J`` quadrature (:meth:`TransparencyIndex.quadrature_nodes`).
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m] that share the nodes, shape (R,).
+        per_decade : float, optional
+            Panels per decade between the singularities.
+        order : int, optional
+            Gauss-Legendre points per panel.
+        tail_eps : float, optional
+            Bound of ``|H P C|`` at the start of the ``zoh`` tail.
+
+        Returns
+        -------
+        w : numpy.ndarray
+            Nodes of the main part [rad/s], shape (P,).
+        wt : numpy.ndarray
+            Their weights [rad/s], shape (P,).
+        w_tail : numpy.ndarray
+            Nodes of the tail [rad/s], shape (Q,) (empty for ``discrete``).
+        wt_tail : numpy.ndarray
+            Their weights [rad/s], shape (Q,).
+        """
         return self.index.quadrature_nodes(bcs, per_decade, order, tail_eps)
 
     # -- ||L||_inf (eq. 13-17), curves and optimum ------------------------------------------------
     def robustness_peak(self, bc: float, alpha: float | None = None, beta: float | None = None) -> RobustnessPeak:
-        """``||L||_inf`` (eq. 16-17) and its frequency; ``alpha``, ``beta`` default to the settings."""
+        """``||L||_inf`` (eq. 16-17) and its frequency; ``alpha``, ``beta`` default to the settings.
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m], finite.
+        alpha : float or None, optional
+            Mass uncertainty of the weight ``W`` (eq. 15), >= 0; ``None`` for the settings' value.
+        beta : float or None, optional
+            Damping uncertainty of the weight ``W``, >= 0; ``None`` for the settings' value.
+
+        Returns
+        -------
+        RobustnessPeak
+            The peak gain, its frequency and whether it is certified.
+
+        Raises
+        ------
+        ValidationError
+            When ``bc`` is not finite or ``alpha``/``beta`` is negative or not finite.
+        """
         return self.robustness.robustness_peak(bc, alpha, beta)
 
     def tradeoff(self, bc_values=None, alpha: float | None = None, beta: float | None = None) -> TradeoffCurves:
-        """``J(B_c)`` and ``||L||_inf(B_c)`` over ``bc_values`` (default: the settings' range; Fig. 8)."""
+        """``J(B_c)`` and ``||L||_inf(B_c)`` over ``bc_values`` (default: the settings' range; Fig. 8).
+
+        Parameters
+        ----------
+        bc_values : array_like or None, optional
+            Controller dampings ``B_c`` [N s/m], finite, shape (N,); ``None`` for the settings'
+            ``bc_count`` values from ``bc_min`` to ``bc_max``.
+        alpha : float or None, optional
+            Mass uncertainty of the weight ``W`` (eq. 15), >= 0; ``None`` for the settings' value.
+        beta : float or None, optional
+            Damping uncertainty of the weight ``W``, >= 0; ``None`` for the settings' value.
+
+        Returns
+        -------
+        TradeoffCurves
+            ``J``, ``||L||_inf`` and the peak frequencies at each ``B_c``.
+
+        Raises
+        ------
+        ValidationError
+            When a ``B_c`` is not finite or ``alpha``/``beta`` is negative.
+        """
         return self.search.tradeoff(bc_values, alpha, beta)
 
     def optimal_damping(self, alpha: float | None = None, beta: float | None = None,
                         bc_range: tuple[float, float] | None = None) -> OptimalDamping:
-        """Minimize ``J(B_c)`` subject to ``||L||_inf <= 1`` (:meth:`DampingSearch.optimal_damping`)."""
+        """Minimize ``J(B_c)`` subject to ``||L||_inf <= 1`` (:meth:`DampingSearch.optimal_damping`).
+
+        Parameters
+        ----------
+        alpha : float or None, optional
+            Mass uncertainty of the weight ``W`` (eq. 15), >= 0; ``None`` for the settings' value.
+        beta : float or None, optional
+            Damping uncertainty of the weight ``W``, >= 0; ``None`` for the settings' value.
+        bc_range : tuple of (float, float) or None, optional
+            The searched ``(low, high)`` range of ``B_c`` [N s/m]; ``None`` for the settings'
+            ``(bc_min, bc_max)``.
+
+        Returns
+        -------
+        OptimalDamping
+            The optimum, or ``feasible = False`` with the reason.
+
+        Raises
+        ------
+        ValidationError
+            When ``alpha``/``beta`` is negative or the range is not finite.
+        """
         return self.search.optimal_damping(alpha, beta, bc_range)
 
     # -- views ----------------------------------------------------------------------------------
     def admittances(self, w, bc: float) -> tuple[np.ndarray, np.ndarray]:
-        """``(Y_v, Y_t)`` at ``s = j w`` (Fig. 9); for ``discrete``, ``Y_t(e^{jwT})`` (w < pi/T)."""
+        """``(Y_v, Y_t)`` at ``s = j w`` (Fig. 9); for ``discrete``, ``Y_t(e^{jwT})`` (w < pi/T).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], positive and finite, any shape; below ``pi/T`` for the
+            ``discrete`` hold.
+        bc : float
+            The controller damping ``B_c`` [N s/m], finite.
+
+        Returns
+        -------
+        Y_v : numpy.ndarray
+            The virtual wall's admittance (eq. 8) [m/(N s)], complex, the shape of ``w``.
+        Y_t : numpy.ndarray
+            The transmitted admittance (eq. 9) [m/(N s)], complex, the shape of ``w``.
+
+        Raises
+        ------
+        ValidationError
+            When a frequency is invalid or, for ``discrete``, not below Nyquist, or ``bc`` is not
+            finite.
+        """
         w = frequencies(w)
         bcs = check_bc(bc)[:1]
         flat = w.ravel()
@@ -199,5 +410,27 @@ class WallDesign:
 
     def step_response(self, bc: float, force: float | None = None, duration: float | None = None,
                       substeps: int = 8) -> StepResponse:
-        """Human-force step on the exact sampled loop (:meth:`StepSimulation.step_response`)."""
+        """Human-force step on the exact sampled loop (:meth:`StepSimulation.step_response`).
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m], finite.
+        force : float or None, optional
+            The human-force step [N], finite; ``None`` for the settings' ``step_force``.
+        duration : float or None, optional
+            Duration [s], in (0, 100]; ``None`` for the settings' ``step_duration``.
+        substeps : int, optional
+            Points per sample between the samples, 1 .. 1000.
+
+        Returns
+        -------
+        StepResponse
+            ``ceil(duration/T) * substeps + 1`` points from ``t = 0``.
+
+        Raises
+        ------
+        ValidationError
+            When an argument is out of its range.
+        """
         return self.step.step_response(bc, force, duration, substeps)

@@ -29,7 +29,17 @@ def transfer_at(A: np.ndarray, B: np.ndarray, C: np.ndarray, D: float, z: np.nda
 
 @dataclass(frozen=True)
 class SampledPlant:
-    """The augmented plant (:class:`AugmentedPlant`) and its ZOH discretization over one sample."""
+    """The augmented plant (:class:`AugmentedPlant`) and its ZOH discretization over one sample.
+
+    Parameters
+    ----------
+    plant : AugmentedPlant
+        The plant plus the handle position, ``n`` states.
+    phi : numpy.ndarray
+        ``e^{A T}``, shape (n, n).
+    gamma : numpy.ndarray
+        ``int_0^T e^{A t} dt B``, shape (n, 1).
+    """
 
     plant: AugmentedPlant
     phi: np.ndarray
@@ -40,7 +50,25 @@ class SampledPlant:
 class DiscreteLoopMatrices:
     """Closed sampled loop ``x+ = (ad0 + B_c ad1) x + bd F``; velocity ``cd x``; the ZOH-sampled
     ``W P`` of eq. (16), ``(cl0 + B_c cl1) x + dw F``.  State: plant, handle position, previous
-    position."""
+    position.
+
+    Parameters
+    ----------
+    ad0 : numpy.ndarray
+        The part of the transition matrix independent of ``B_c``, shape (N, N).
+    ad1 : numpy.ndarray
+        The part of the transition matrix per unit ``B_c``, shape (N, N).
+    bd : numpy.ndarray
+        Input column of the held human force [N], shape (N, 1).
+    cd : numpy.ndarray
+        Output row of the handle velocity [m/s], shape (1, N).
+    cl0 : numpy.ndarray
+        The part of the ``W P`` output row independent of ``B_c``, shape (1, N).
+    cl1 : numpy.ndarray
+        The part of the ``W P`` output row per unit ``B_c``, shape (1, N).
+    dw : float
+        Feedthrough of the ``W P`` output.
+    """
 
     ad0: np.ndarray
     ad1: np.ndarray
@@ -57,6 +85,27 @@ class DiscreteModal:
 
     Rows whose eigenvector matrix is ill-conditioned (``good`` False) keep their matrices
     (``ad``, ``bd``, ``cd``, ``cl``) and are evaluated by direct solves instead.
+
+    Parameters
+    ----------
+    lam : numpy.ndarray
+        Closed-loop poles ``z``, complex, shape (R, N).
+    r_y : numpy.ndarray
+        Residues of ``Y_t(z)``, complex, shape (R, N).
+    r_l : numpy.ndarray
+        Residues of ``L(z)``, complex, shape (R, N).
+    dw : float
+        Feedthrough of ``L(z)``.
+    good : numpy.ndarray
+        Whether each row's eigenvector matrix is well conditioned, bool, shape (R,).
+    ad : numpy.ndarray
+        Transition matrix of each row, shape (R, N, N).
+    bd : numpy.ndarray
+        Input column of the held human force, shape (N, 1).
+    cd : numpy.ndarray
+        Output row of the handle velocity, shape (1, N).
+    cl : numpy.ndarray
+        Output row of ``W P`` of each row, shape (R, 1, N).
     """
 
     lam: np.ndarray
@@ -70,11 +119,39 @@ class DiscreteModal:
     cl: np.ndarray
 
     def admittance(self, rows: np.ndarray, z: np.ndarray) -> np.ndarray:
-        """``Y_t(z)`` (eq. 9, sampled) for ``rows`` (R) at ``z`` (P or R x P)."""
+        """``Y_t(z)`` (eq. 9, sampled) for ``rows`` (R) at ``z`` (P or R x P).
+
+        Parameters
+        ----------
+        rows : numpy.ndarray
+            Indices of the ``B_c`` rows, int, shape (R,).
+        z : numpy.ndarray
+            Points of the z-plane (usually ``e^{j w T}``), complex, shape (P,) shared by the rows
+            or (R, P).
+
+        Returns
+        -------
+        numpy.ndarray
+            ``Y_t(z)`` [m/(N s)], complex, shape (R, P).
+        """
         return self._evaluate(rows, z, robustness=False)
 
     def robustness(self, rows: np.ndarray, z: np.ndarray) -> np.ndarray:
-        """``L(z)`` (eq. 16, sampled) for ``rows`` (R) at ``z`` (P or R x P)."""
+        """``L(z)`` (eq. 16, sampled) for ``rows`` (R) at ``z`` (P or R x P).
+
+        Parameters
+        ----------
+        rows : numpy.ndarray
+            Indices of the ``B_c`` rows, int, shape (R,).
+        z : numpy.ndarray
+            Points of the z-plane (usually ``e^{j w T}``), complex, shape (P,) shared by the rows
+            or (R, P).
+
+        Returns
+        -------
+        numpy.ndarray
+            ``L(z)`` (dimensionless), complex, shape (R, P).
+        """
         return self._evaluate(rows, z, robustness=True)
 
     def _evaluate(self, rows: np.ndarray, z: np.ndarray, robustness: bool) -> np.ndarray:
@@ -93,7 +170,15 @@ class DiscreteModal:
 
 
 class DiscreteLoop:
-    """The sampled loop of a design (its ZOH plant is computed once)."""
+    """The sampled loop of a design (its ZOH plant is computed once).
+
+    Parameters
+    ----------
+    settings : WallSettings
+        The design (sample time ``T``, ``K_c``).
+    plant : WallPlant
+        Its plant ``P(s)``.
+    """
 
     def __init__(self, settings: WallSettings, plant: WallPlant):
         self.settings = settings
@@ -101,7 +186,13 @@ class DiscreteLoop:
         self._sampled: SampledPlant | None = None
 
     def sampled_plant(self) -> SampledPlant:
-        """The augmented plant and its ZOH discretization over ``T`` (cached)."""
+        """The augmented plant and its ZOH discretization over ``T`` (cached).
+
+        Returns
+        -------
+        SampledPlant
+            The augmented plant with ``phi`` and ``gamma``.
+        """
         if self._sampled is None:
             aug = self.plant.augmented()
             phi, gam = discretize_zoh(aug.A, aug.B, self.settings.sample_time)
@@ -109,7 +200,20 @@ class DiscreteLoop:
         return self._sampled
 
     def matrices(self, alpha: float = 0.0, beta: float = 0.0) -> DiscreteLoopMatrices:
-        """The closed sampled loop; ``alpha``, ``beta`` weight the ``W P`` output (eq. 15-16)."""
+        """The closed sampled loop; ``alpha``, ``beta`` weight the ``W P`` output (eq. 15-16).
+
+        Parameters
+        ----------
+        alpha : float, optional
+            Mass uncertainty of the weight ``W = alpha m s + beta b``.
+        beta : float, optional
+            Damping uncertainty of the weight ``W``.
+
+        Returns
+        -------
+        DiscreteLoopMatrices
+            The loop, affine in ``B_c``.
+        """
         sp = self.sampled_plant()
         A, B, Cv, Cx = sp.plant.A, sp.plant.B, sp.plant.Cv, sp.plant.Cx
         Phi, Gam = sp.phi, sp.gamma
@@ -136,6 +240,20 @@ class DiscreteLoop:
 
         Rows whose eigenvector matrix is ill-conditioned (cond > 1e8) are evaluated by direct
         solves instead (see :class:`DiscreteModal`).
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m], shape (R,).
+        alpha : float, optional
+            Mass uncertainty of the weight ``W`` of ``L(z)``.
+        beta : float, optional
+            Damping uncertainty of the weight ``W`` of ``L(z)``.
+
+        Returns
+        -------
+        DiscreteModal
+            Poles and residues, one row per ``B_c``.
         """
         m = self.matrices(alpha, beta)
         Ad = m.ad0[None] + bcs[:, None, None] * m.ad1[None]
@@ -149,7 +267,19 @@ class DiscreteLoop:
         return DiscreteModal(lam, rY, rL, m.dw, good, Ad, m.bd, m.cd, CL)
 
     def poles(self, bcs: np.ndarray) -> np.ndarray:
-        """Closed-loop poles ``log(z)/T`` (rows = ``bcs``)."""
+        """Closed-loop poles ``log(z)/T`` (rows = ``bcs``).
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m], shape (R,).
+
+        Returns
+        -------
+        numpy.ndarray
+            Equivalent continuous poles [rad/s], complex, shape (R, N); ``-inf`` real part for a
+            pole at ``z = 0``.
+        """
         m = self.matrices()
         lam = np.linalg.eigvals(m.ad0[None] + bcs[:, None, None] * m.ad1[None]).astype(complex)
         with np.errstate(divide="ignore"):

@@ -48,6 +48,31 @@ class FiveBar:
 
     ``proximal_masses``/``distal_masses`` are (left, right); ``rotor_inertia`` is each motor's
     inertia (kg m^2); ``joint_damping`` each motor's viscous friction (N m s/rad).
+
+    Parameters
+    ----------
+    l1 : float, optional
+        Length of the proximal links [m], > 0.
+    l2 : float, optional
+        Length of the distal links [m], > 0.
+    base : float, optional
+        Distance ``d`` between the two motors [m], >= 0.
+    proximal_masses : tuple of (float, float), optional
+        Masses of the proximal links (left, right) [kg], >= 0.
+    distal_masses : tuple of (float, float), optional
+        Masses of the distal links (left, right) [kg], >= 0.
+    handle_mass : float, optional
+        Point mass at the handle [kg], >= 0.
+    rotor_inertia : float, optional
+        Each motor's rotor inertia [kg m^2], >= 0.
+    joint_damping : float, optional
+        Each motor's viscous friction [N m s/rad], >= 0.
+
+    Raises
+    ------
+    ValidationError
+        When a length, mass, inertia or damping is out of its range, or a mass pair does not
+        have two values.
     """
 
     l1: float = 0.2
@@ -72,14 +97,43 @@ class FiveBar:
 
     def centre(self) -> np.ndarray:
         """Centre of the workspace: the midpoint of the reachable part of the symmetry axis,
-        ``(0, sqrt((l1 + l2)^2 - (d/2)^2) / 2)``."""
+        ``(0, sqrt((l1 + l2)^2 - (d/2)^2) / 2)``.
+
+        Returns
+        -------
+        numpy.ndarray
+            The handle position ``(x, y)`` [m], shape (2,).
+        """
         return np.array([0.0, 0.5 * math.sqrt((self.l1 + self.l2) ** 2 - (0.5 * self.base) ** 2)])
 
     def bases(self) -> np.ndarray:
+        """The motor positions ``A1 = (-d/2, 0)`` and ``A2 = (d/2, 0)``.
+
+        Returns
+        -------
+        numpy.ndarray
+            One row ``(x, y)`` per motor [m], shape (2, 2).
+        """
         return np.array([[-0.5 * self.base, 0.0], [0.5 * self.base, 0.0]])
 
     def inverse_kinematics(self, p) -> np.ndarray:
-        """Motor angles ``(q1, q2)`` placing the handle at ``p`` (elbows outwards)."""
+        """Motor angles ``(q1, q2)`` placing the handle at ``p`` (elbows outwards).
+
+        Parameters
+        ----------
+        p : array_like
+            Handle position ``(x, y)`` [m], shape (2,).
+
+        Returns
+        -------
+        numpy.ndarray
+            The angles ``(q1, q2)`` from the x axis [rad], shape (2,).
+
+        Raises
+        ------
+        ValidationError
+            When ``p`` is outside the reachable workspace.
+        """
         p = np.asarray(p, dtype=float)
         q = np.empty(2)
         for i, (a, sign) in enumerate(zip(self.bases(), (1.0, -1.0))):
@@ -92,10 +146,33 @@ class FiveBar:
         return q
 
     def elbows(self, q) -> np.ndarray:
+        """The elbows ``B_i = A_i + l1 (cos q_i, sin q_i)``.
+
+        Parameters
+        ----------
+        q : array_like
+            Motor angles ``(q1, q2)`` [rad], shape (2,).
+
+        Returns
+        -------
+        numpy.ndarray
+            One row ``(x, y)`` per elbow [m], shape (2, 2).
+        """
         return self.bases() + self.l1 * np.stack([np.cos(q), np.sin(q)], axis=1)
 
     def jacobian(self, p) -> np.ndarray:
-        """``J`` with ``P' = J q'`` at handle position ``p``."""
+        """``J`` with ``P' = J q'`` at handle position ``p``.
+
+        Parameters
+        ----------
+        p : array_like
+            Handle position ``(x, y)`` [m], reachable, shape (2,).
+
+        Returns
+        -------
+        numpy.ndarray
+            The Jacobian [m/rad], shape (2, 2).
+        """
         p = np.asarray(p, dtype=float)
         q = self.inverse_kinematics(p)
         u = p[None, :] - self.elbows(q)
@@ -104,7 +181,20 @@ class FiveBar:
         return np.linalg.solve(u, D)
 
     def cartesian_matrices(self, p=None) -> tuple[np.ndarray, np.ndarray]:
-        """``(M_x, B_x)`` at handle position ``p`` (default: the workspace centre)."""
+        """``(M_x, B_x)`` at handle position ``p`` (default: the workspace centre).
+
+        Parameters
+        ----------
+        p : array_like or None, optional
+            Handle position ``(x, y)`` [m], reachable, shape (2,); ``None`` for :meth:`centre`.
+
+        Returns
+        -------
+        M_x : numpy.ndarray
+            Cartesian inertia [kg], symmetric, shape (2, 2).
+        B_x : numpy.ndarray
+            Cartesian damping [N s/m], symmetric, shape (2, 2).
+        """
         p = self.centre() if p is None else np.asarray(p, dtype=float)
         J = self.jacobian(p)
         Jinv = np.linalg.inv(J)
@@ -120,7 +210,20 @@ class FiveBar:
 
     def kinetic_energy(self, p, pdot) -> float:
         """Kinetic energy for handle velocity ``pdot`` straight from the link velocities (used to
-        check :meth:`cartesian_matrices` independently)."""
+        check :meth:`cartesian_matrices` independently).
+
+        Parameters
+        ----------
+        p : array_like
+            Handle position ``(x, y)`` [m], reachable, shape (2,).
+        pdot : array_like
+            Handle velocity [m/s], shape (2,).
+
+        Returns
+        -------
+        float
+            The kinetic energy [J] (distal links as 200 point masses each).
+        """
         p = np.asarray(p, dtype=float)
         qd = np.linalg.solve(self.jacobian(p), np.asarray(pdot, dtype=float))
         q = self.inverse_kinematics(p)
@@ -157,6 +260,27 @@ def five_bar_preset(name: str) -> tuple[np.ndarray, np.ndarray, FiveBar, np.ndar
     0.012 kg (left) and 0.024 kg (right, carrying the handle bracket), joint friction
     1e-3 N m s/rad, at the workspace centre.  ``five_bar_offset``: equal distal links (0.015 kg),
     handle 0.06 m right of the centre.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`FIVE_BAR_PRESETS`.
+
+    Returns
+    -------
+    M_x : numpy.ndarray
+        Cartesian inertia at the position [kg], shape (2, 2).
+    B_x : numpy.ndarray
+        Cartesian damping at the position [N s/m], shape (2, 2).
+    linkage : FiveBar
+        The linkage.
+    position : numpy.ndarray
+        The handle position ``(x, y)`` [m], shape (2,).
+
+    Raises
+    ------
+    ValidationError
+        When ``name`` is not a preset.
     """
     if name not in FIVE_BAR_PRESETS:
         raise ValidationError("preset", "one of " + ", ".join(FIVE_BAR_PRESETS), name)

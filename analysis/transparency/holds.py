@@ -41,6 +41,29 @@ def hold_response(hold: str, s: np.ndarray, sample_time: float, damping: float =
     ``oscillating=False`` drops the ``e^{-sT}`` term of ``zoh`` (its non-oscillatory part
     ``1/(sT)``); used only far above Nyquist, in the tail of the quadrature, where the dropped
     term integrates to a negligible amount.
+
+    Parameters
+    ----------
+    hold : str
+        The hold model: ``"none"``, ``"pade"``, ``"lowpass2"`` or ``"zoh"``.
+    s : numpy.ndarray
+        Complex frequencies [rad/s], any shape.
+    sample_time : float
+        Sample time ``T`` [s].
+    damping : float, optional
+        Damping ratio ``zeta`` of ``lowpass2``.
+    oscillating : bool, optional
+        False drops the ``e^{-sT}`` term of ``zoh``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``H(s)`` (dimensionless), complex, the shape of ``s``.
+
+    Raises
+    ------
+    ValueError
+        When ``hold`` has no continuous response (``"discrete"`` or an unknown name).
     """
     s = np.asarray(s, dtype=complex)
     T = sample_time
@@ -63,7 +86,33 @@ def hold_response(hold: str, s: np.ndarray, sample_time: float, damping: float =
 
 def hold_state_space(hold: str, sample_time: float, damping: float = 0.7071
                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """``(A, B, C, D)`` of a rational hold model (``none``, ``pade``, ``lowpass2``)."""
+    """``(A, B, C, D)`` of a rational hold model (``none``, ``pade``, ``lowpass2``).
+
+    Parameters
+    ----------
+    hold : str
+        The hold model: ``"none"``, ``"pade"`` or ``"lowpass2"``.
+    sample_time : float
+        Sample time ``T`` [s].
+    damping : float, optional
+        Damping ratio ``zeta`` of ``lowpass2``.
+
+    Returns
+    -------
+    A : numpy.ndarray
+        State matrix, shape (n, n) with n = 0, 1 or 2.
+    B : numpy.ndarray
+        Input matrix, shape (n, 1).
+    C : numpy.ndarray
+        Output matrix, shape (1, n).
+    D : numpy.ndarray
+        Feedthrough, shape (1, 1).
+
+    Raises
+    ------
+    ValueError
+        When ``hold`` is not rational.
+    """
     T = sample_time
     if hold == "none":
         return np.zeros((0, 0)), np.zeros((0, 1)), np.zeros((1, 0)), np.ones((1, 1))

@@ -37,7 +37,19 @@ def wall_admittance(settings: WallSettings, s: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True)
 class ErrorRealization:
-    """``w1 (Y_v - Y_t)`` for a rational hold: ``x' = (a0 + B_c a1) x + b F``, ``e = c x``."""
+    """``w1 (Y_v - Y_t)`` for a rational hold: ``x' = (a0 + B_c a1) x + b F``, ``e = c x``.
+
+    Parameters
+    ----------
+    a0 : numpy.ndarray
+        The part of the state matrix independent of ``B_c``, shape (N, N).
+    a1 : numpy.ndarray
+        The part of the state matrix per unit ``B_c``, shape (N, N).
+    b : numpy.ndarray
+        Input column of the human force [N], shape (N, 1).
+    c : numpy.ndarray
+        Output row of the weighted velocity error [m/s], shape (1, N).
+    """
 
     a0: np.ndarray
     a1: np.ndarray
@@ -100,7 +112,13 @@ def _error_realization(st: WallSettings, loop) -> ErrorRealization | str:
 
 
 class TransparencyIndex:
-    """``J(B_c)`` of eq. (11) for one design, one ``B_c`` or many."""
+    """``J(B_c)`` of eq. (11) for one design, one ``B_c`` or many.
+
+    Parameters
+    ----------
+    loops : LoopRealizations
+        The loop realisations of the design.
+    """
 
     def __init__(self, loops: LoopRealizations):
         self.loops = loops
@@ -110,14 +128,39 @@ class TransparencyIndex:
 
     def error_realization(self, hold: str) -> ErrorRealization | str:
         """``w1 (Y_v - Y_t)`` for a rational hold, or a reason string when it is not strictly
-        proper (cached)."""
+        proper (cached).
+
+        Parameters
+        ----------
+        hold : str
+            A rational hold model: ``"none"``, ``"pade"`` or ``"lowpass2"``.
+
+        Returns
+        -------
+        ErrorRealization or str
+            The realization, or why ``w1 (Y_v - Y_t)`` is not strictly proper.
+        """
         out = self._errors.get(hold)
         if out is None:
             out = self._errors[hold] = _error_realization(self.settings, self.loops.rational(hold))
         return out
 
     def lyapunov(self, bc: float, hold: str) -> IndexResult:
-        """``J`` from the Lyapunov equation of :meth:`error_realization`."""
+        """``J`` from the Lyapunov equation of :meth:`error_realization`.
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m].
+        hold : str
+            A rational hold model: ``"none"``, ``"pade"`` or ``"lowpass2"``.
+
+        Returns
+        -------
+        IndexResult
+            ``J`` with ``method = "lyapunov"``; not finite when the error is not strictly proper or
+            the loop is unstable.
+        """
         parts = self.error_realization(hold)
         if isinstance(parts, str):
             return IndexResult(bc, math.inf, False, parts, "lyapunov")
@@ -131,7 +174,21 @@ class TransparencyIndex:
     def h2_modal_many(self, bcs: np.ndarray, hold: str) -> np.ndarray:
         """H2 norms for many ``B_c`` at once from poles and residues, ``J = -sum_ij r_i r_j^* /
         (p_i + p_j^*)`` (the Lyapunov solution in modal form); rows with an ill-conditioned
-        eigenbasis (cond > 1e6) are solved by Lyapunov instead."""
+        eigenbasis (cond > 1e6) are solved by Lyapunov instead.
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m], shape (R,).
+        hold : str
+            A rational hold model: ``"none"``, ``"pade"`` or ``"lowpass2"``.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``J`` at each ``B_c``, ``inf`` where the loop is unstable or the error not strictly
+            proper, shape (R,).
+        """
         parts = self.error_realization(hold)
         if isinstance(parts, str):
             return np.full(bcs.size, math.inf)
@@ -148,7 +205,13 @@ class TransparencyIndex:
         return J
 
     def static_reason(self) -> str:
-        """Why ``J`` is infinite for every ``B_c`` (the settings alone), or ``""``."""
+        """Why ``J`` is infinite for every ``B_c`` (the settings alone), or ``""``.
+
+        Returns
+        -------
+        str
+            The reason; ``""`` when the settings alone do not make ``J`` infinite.
+        """
         st = self.settings
         if st.hold == "discrete":
             return ""
@@ -166,6 +229,28 @@ class TransparencyIndex:
         ``(1/pi) (sum wt f(w) + sum wt_tail f(w_tail))``.  ``per_decade`` and ``order`` set the
         density (the benchmark varies them); ``tail_eps`` bounds ``|H P C|`` where the ``zoh``
         tail starts.
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m] that share the nodes, shape (R,).
+        per_decade : float, optional
+            Panels per decade between the singularities.
+        order : int, optional
+            Gauss-Legendre points per panel.
+        tail_eps : float, optional
+            Bound of ``|H P C|`` at the start of the ``zoh`` tail.
+
+        Returns
+        -------
+        w : numpy.ndarray
+            Nodes of the main part [rad/s], shape (P,).
+        wt : numpy.ndarray
+            Their weights [rad/s], shape (P,).
+        w_tail : numpy.ndarray
+            Nodes of the tail [rad/s], shape (Q,) (empty for ``discrete``).
+        wt_tail : numpy.ndarray
+            Their weights [rad/s], shape (Q,).
         """
         st = self.settings
         T = st.sample_time
@@ -191,7 +276,22 @@ class TransparencyIndex:
         return w, wt, om / u, ut * om / (u * u)
 
     def integrand(self, bcs: np.ndarray, w: np.ndarray, oscillating: bool = True) -> np.ndarray:
-        """``|w1 (Y_v - Y_t)|^2`` for each ``B_c`` (rows) at ``w``."""
+        """``|w1 (Y_v - Y_t)|^2`` for each ``B_c`` (rows) at ``w``.
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m], shape (R,).
+        w : numpy.ndarray
+            Angular frequencies [rad/s], shape (P,).
+        oscillating : bool, optional
+            False drops the ``e^{-sT}`` term of the ``zoh`` hold (tail nodes).
+
+        Returns
+        -------
+        numpy.ndarray
+            The integrand [(m/s/N)^2], shape (R, P).
+        """
         s = 1j * w
         yt = self.loops.admittance_rows(bcs, w, oscillating)
         e = weight(self.settings, s)[None, :] * (wall_admittance(self.settings, s)[None, :] - yt)
@@ -206,7 +306,31 @@ class TransparencyIndex:
         return tot / math.pi
 
     def index_result(self, bc: float, method: str = "auto", per_decade: float = 8.0, order: int = 16) -> IndexResult:
-        """``J(B_c)`` (eq. 11) with its status; ``method`` ``auto``/``lyapunov``/``quadrature``."""
+        """``J(B_c)`` (eq. 11) with its status; ``method`` ``auto``/``lyapunov``/``quadrature``.
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m], finite.
+        method : str, optional
+            ``"auto"`` (Lyapunov for a rational hold, else quadrature), ``"lyapunov"`` or
+            ``"quadrature"``.
+        per_decade : float, optional
+            Quadrature panels per decade (see :meth:`quadrature_nodes`).
+        order : int, optional
+            Gauss-Legendre points per panel.
+
+        Returns
+        -------
+        IndexResult
+            ``J``, whether it is finite and why not, the method and the number of nodes.
+
+        Raises
+        ------
+        ValidationError
+            When ``bc`` is not finite, ``method`` is unknown, or ``"lyapunov"`` is asked for a
+            non-rational hold.
+        """
         bc = float(check_bc(bc)[0])
         st = self.settings
         if method == "auto":
@@ -231,11 +355,33 @@ class TransparencyIndex:
         return IndexResult(bc, float(total / math.pi), True, "", "quadrature", w.size + wtl.size)
 
     def performance_index(self, bc: float) -> float:
-        """``J(B_c)`` of eq. (11); ``inf`` when not finite (see :meth:`index_result` for why)."""
+        """``J(B_c)`` of eq. (11); ``inf`` when not finite (see :meth:`index_result` for why).
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m], finite.
+
+        Returns
+        -------
+        float
+            ``J`` [(m/s/N)^2 rad/s], or ``inf``.
+        """
         return self.index_result(bc).index
 
     def index_many(self, bcs: np.ndarray) -> np.ndarray:
-        """``J`` for every ``B_c`` of ``bcs`` (``inf`` where not finite), batched."""
+        """``J`` for every ``B_c`` of ``bcs`` (``inf`` where not finite), batched.
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m], shape (R,).
+
+        Returns
+        -------
+        numpy.ndarray
+            ``J`` at each ``B_c`` [(m/s/N)^2 rad/s], ``inf`` where not finite, shape (R,).
+        """
         st = self.settings
         if st.hold in RATIONAL_HOLDS:
             return self.h2_modal_many(bcs, st.hold)

@@ -61,7 +61,25 @@ _DURATION = Real(lo=0.0, lo_open=True, hi=100.0, allowed="in (0, 100] s")
 class ObserverResponse:
     """Single-axis frequency responses at ``w`` (rad/s): the real plant ``plant``, the nominal
     ``nominal``, the ``effective`` plant through the observer, and disturbance-to-velocity with
-    and without the observer."""
+    and without the observer.
+
+    Parameters
+    ----------
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (N,).
+    plant : numpy.ndarray
+        The real plant ``P(jw)`` [m/(N s)], complex, shape (N,).
+    nominal : numpy.ndarray
+        The nominal plant ``P_n(jw)`` [m/(N s)], complex, shape (N,).
+    effective : numpy.ndarray
+        The effective plant through the observer ``v/u`` [m/(N s)], complex, shape (N,).
+    q : numpy.ndarray
+        The low-pass ``Q(jw)`` (dimensionless), complex, shape (N,).
+    disturbance_with : numpy.ndarray
+        Disturbance to velocity ``v/d`` with the observer [m/(N s)], complex, shape (N,).
+    disturbance_without : numpy.ndarray
+        Disturbance to velocity without the observer (``P``) [m/(N s)], complex, shape (N,).
+    """
 
     w: np.ndarray
     plant: np.ndarray
@@ -75,7 +93,25 @@ class ObserverResponse:
 @dataclass(frozen=True)
 class CouplingResponse:
     """Two-axis responses at ``w``: ``v_y/F_x`` (coupling) and ``v_x/F_x`` (direct), without and
-    with the observers; ``ratio = with/without`` and its closed form (module doc)."""
+    with the observers; ``ratio = with/without`` and its closed form (module doc).
+
+    Parameters
+    ----------
+    w : numpy.ndarray
+        Angular frequencies [rad/s], shape (N,).
+    coupling_without : numpy.ndarray
+        ``v_y/F_x`` without the observers [m/(N s)], complex, shape (N,).
+    coupling_with : numpy.ndarray
+        ``v_y/F_x`` with the observers [m/(N s)], complex, shape (N,).
+    direct_without : numpy.ndarray
+        ``v_x/F_x`` without the observers [m/(N s)], complex, shape (N,).
+    direct_with : numpy.ndarray
+        ``v_x/F_x`` with the observers [m/(N s)], complex, shape (N,).
+    ratio : numpy.ndarray
+        ``coupling_with / coupling_without`` from the state space, complex, shape (N,).
+    ratio_closed_form : numpy.ndarray
+        The same ratio by the closed form of the module doc, complex, shape (N,).
+    """
 
     w: np.ndarray
     coupling_without: np.ndarray
@@ -89,7 +125,27 @@ class CouplingResponse:
 @dataclass(frozen=True)
 class TwoAxisStep:
     """Commanded force step on x (``force`` N at ``t = 0``): positions and velocities of both
-    axes without and with the observers (exact discretization)."""
+    axes without and with the observers (exact discretization).
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times [s], equally spaced from 0, shape (N,).
+    force : float
+        The commanded force step on x [N].
+    x_without : numpy.ndarray
+        Position on x without the observers [m], shape (N,).
+    y_without : numpy.ndarray
+        Position on y without the observers [m], shape (N,).
+    vy_without : numpy.ndarray
+        Velocity on y without the observers [m/s], shape (N,).
+    x_with : numpy.ndarray
+        Position on x with the observers [m], shape (N,).
+    y_with : numpy.ndarray
+        Position on y with the observers [m], shape (N,).
+    vy_with : numpy.ndarray
+        Velocity on y with the observers [m/s], shape (N,).
+    """
 
     t: np.ndarray
     force: float
@@ -102,7 +158,24 @@ class TwoAxisStep:
 
 
 class DisturbanceObserver:
-    """One axis: ``P_n = 1/(M s + B)``, ``Q = (w_Q/(s + w_Q))^r``."""
+    """One axis: ``P_n = 1/(M s + B)``, ``Q = (w_Q/(s + w_Q))^r``.
+
+    Parameters
+    ----------
+    nominal_mass : float, optional
+        Nominal mass ``M`` [kg].
+    nominal_damping : float, optional
+        Nominal damping ``B`` [N s/m].
+    order : int, optional
+        Order ``r`` of ``Q``, 1 .. 8.
+    cutoff : float, optional
+        Cut-off ``w_Q`` of ``Q`` [rad/s], > 0.
+
+    Raises
+    ------
+    ValidationError
+        When a parameter is out of its range (as :class:`ObserverSettings` checks it).
+    """
 
     def __init__(self, nominal_mass: float = 0.01, nominal_damping: float = 0.022, order: int = 2,
                  cutoff: float = 200.0):
@@ -112,18 +185,73 @@ class DisturbanceObserver:
 
     @classmethod
     def from_settings(cls, st: ObserverSettings) -> DisturbanceObserver:
+        """The single-axis observer of a settings record (its nominal plant and ``Q``).
+
+        Parameters
+        ----------
+        st : ObserverSettings
+            The observer settings (profile section).
+
+        Returns
+        -------
+        DisturbanceObserver
+            The observer with ``st``'s nominal mass, damping, order and cut-off.
+        """
         return cls(st.nominal_mass, st.nominal_damping, st.order, st.cutoff)
 
     def q(self, s: np.ndarray) -> np.ndarray:
+        """The binomial low-pass ``Q(s) = (w_Q/(s + w_Q))^r``.
+
+        Parameters
+        ----------
+        s : numpy.ndarray
+            Complex frequencies [rad/s], any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``Q(s)`` (dimensionless), complex, the shape of ``s``.
+        """
         st = self.settings
         return (st.cutoff / (np.asarray(s, dtype=complex) + st.cutoff)) ** st.order
 
     def nominal(self, s: np.ndarray) -> np.ndarray:
+        """The nominal plant ``P_n(s) = 1/(M s + B)`` (eq. 3).
+
+        Parameters
+        ----------
+        s : numpy.ndarray
+            Complex frequencies [rad/s], any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            ``P_n(s)`` [m/(N s)], complex, the shape of ``s``.
+        """
         st = self.settings
         return 1.0 / (st.nominal_mass * np.asarray(s, dtype=complex) + st.nominal_damping)
 
     def perturbed_plant(self, s: np.ndarray, alpha: float, beta: float, delta: float) -> np.ndarray:
-        """``P~`` of eq. (13) around the nominal values."""
+        """``P~`` of eq. (13) around the nominal values.
+
+        ``P~(s) = 1/(M (1 + alpha Delta) s + B (1 + beta Delta))``.
+
+        Parameters
+        ----------
+        s : numpy.ndarray
+            Complex frequencies [rad/s], any shape.
+        alpha : float
+            Mass uncertainty.
+        beta : float
+            Damping uncertainty.
+        delta : float
+            The perturbation ``Delta``, in [-1, 1].
+
+        Returns
+        -------
+        numpy.ndarray
+            ``P~(s)`` [m/(N s)], complex, the shape of ``s``.
+        """
         st = self.settings
         return 1.0 / (st.nominal_mass * (1 + alpha * delta) * np.asarray(s, dtype=complex)
                       + st.nominal_damping * (1 + beta * delta))
@@ -131,7 +259,32 @@ class DisturbanceObserver:
     def response(self, w, plant: np.ndarray | Device | None = None, alpha: float = 0.0, beta: float = 0.0,
                  delta: float = 0.0) -> ObserverResponse:
         """Responses at ``w`` for a real plant given as values ``P(jw)``, a :class:`Device` (handle
-        admittance), or ``None`` (eq. 13 with ``alpha``, ``beta``, ``delta``)."""
+        admittance), or ``None`` (eq. 13 with ``alpha``, ``beta``, ``delta``).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], positive and finite, shape (N,).
+        plant : numpy.ndarray or Device or None, optional
+            The real plant: its values ``P(jw)`` [m/(N s)] (shape (N,)), a device chain (its
+            handle admittance), or ``None`` for ``P~`` of eq. (13).
+        alpha : float, optional
+            Mass uncertainty of ``P~`` (only when ``plant`` is None).
+        beta : float, optional
+            Damping uncertainty of ``P~`` (only when ``plant`` is None).
+        delta : float, optional
+            The perturbation ``Delta`` of ``P~`` (only when ``plant`` is None).
+
+        Returns
+        -------
+        ObserverResponse
+            The plant, nominal, effective and disturbance responses at ``w``.
+
+        Raises
+        ------
+        ValidationError
+            When a frequency is not finite and positive.
+        """
         w = frequencies(w)
         s = 1j * w
         if plant is None:
@@ -151,6 +304,29 @@ class TwoAxisObserver:
 
     ``nominal_mass``/``nominal_damping`` default to the diagonals of ``M_x``/``B_x`` (each axis
     identified with the other locked, as in the paper).
+
+    Parameters
+    ----------
+    inertia : array_like
+        Cartesian inertia ``M_x`` [kg], symmetric positive definite, shape (2, 2).
+    damping : array_like
+        Cartesian damping ``B_x`` [N s/m], symmetric positive semidefinite, shape (2, 2).
+    order : int, optional
+        Order ``r`` of ``Q``, 1 .. 8.
+    cutoff : float, optional
+        Cut-off ``w_Q`` of ``Q`` [rad/s], > 0.
+    nominal_mass : array_like or None, optional
+        Nominal masses of the two axes [kg], shape (2,); ``None`` for the diagonal of ``M_x``.
+    nominal_damping : array_like or None, optional
+        Nominal dampings of the two axes [N s/m], shape (2,); ``None`` for the diagonal of
+        ``B_x``.
+
+    Raises
+    ------
+    ValidationError
+        When ``inertia`` or ``damping`` is not a finite symmetric 2x2 matrix, ``inertia`` is not
+        positive definite, ``damping`` not positive semidefinite, or ``order``/``cutoff`` is out
+        of range.
     """
 
     def __init__(self, inertia, damping, order: int = 2, cutoff: float = 200.0, nominal_mass=None,
@@ -172,6 +348,20 @@ class TwoAxisObserver:
 
     @classmethod
     def from_settings(cls, st: ObserverSettings) -> TwoAxisObserver:
+        """The two-axis observer of a settings record, on its five-bar preset.
+
+        Parameters
+        ----------
+        st : ObserverSettings
+            The observer settings; ``preset`` names the device
+            (:func:`~analysis.transparency.five_bar.five_bar_preset`).
+
+        Returns
+        -------
+        TwoAxisObserver
+            The preset's ``M_x``, ``B_x`` with ``st``'s order and cut-off (nominal values: the
+            diagonals).
+        """
         M, B, _, _ = five_bar_preset(st.preset)
         return cls(M, B, st.order, st.cutoff)
 
@@ -183,6 +373,20 @@ class TwoAxisObserver:
         lags on ``v`` (``xi``) and one on ``u_p`` (``zeta``):
         ``Q Z_n v = M_n w_Q (xi_{r-1} - xi_r) + B_n xi_r`` (``xi_0 = v``), ``Q u_p = zeta_r``,
         ``d_hat = Q Z_n v - Q u_p`` and ``u_p = u - d_hat``.
+
+        Parameters
+        ----------
+        observer : bool
+            Whether the loop includes the observers.
+
+        Returns
+        -------
+        A : numpy.ndarray
+            State matrix, shape (n, n) with n = 4 (4 + 4 r with the observers).
+        Bu : numpy.ndarray
+            Input matrix of the commanded forces ``(F_x, F_y)`` [N], shape (n, 2).
+        C : numpy.ndarray
+            Output matrix of ``[x, y, v_x, v_y]`` [m, m/s], shape (4, n).
         """
         r, wq = self.order, self.cutoff
         Minv = np.linalg.inv(self.M)
@@ -222,7 +426,23 @@ class TwoAxisObserver:
 
     # -- views --------------------------------------------------------------------------------
     def coupling(self, w) -> CouplingResponse:
-        """``v_y/F_x`` and ``v_x/F_x`` with and without the observers at ``w`` (rad/s)."""
+        """``v_y/F_x`` and ``v_x/F_x`` with and without the observers at ``w`` (rad/s).
+
+        Parameters
+        ----------
+        w : array_like
+            Angular frequencies [rad/s], positive and finite, shape (N,).
+
+        Returns
+        -------
+        CouplingResponse
+            The coupling and direct responses, their ratio and its closed form.
+
+        Raises
+        ------
+        ValidationError
+            When a frequency is not finite and positive.
+        """
         w = frequencies(w)
         s = 1j * w
         out = {}
@@ -241,7 +461,27 @@ class TwoAxisObserver:
         return CouplingResponse(w, out[False][0], out[True][0], out[False][1], out[True][1], ratio, ratio_cf)
 
     def step_response(self, force: float = 1.0, duration: float = 0.2, points: int = 2001) -> TwoAxisStep:
-        """Commanded force step on x: exact discretization ``x_{k+1} = e^{A h} x_k + Gamma F``."""
+        """Commanded force step on x: exact discretization ``x_{k+1} = e^{A h} x_k + Gamma F``.
+
+        Parameters
+        ----------
+        force : float, optional
+            The force step on x [N], finite.
+        duration : float, optional
+            Duration [s], in (0, 100].
+        points : int, optional
+            Number of equally spaced times from 0 to ``duration``, 2 .. 10^6.
+
+        Returns
+        -------
+        TwoAxisStep
+            Positions and velocities of both axes without and with the observers.
+
+        Raises
+        ------
+        ValidationError
+            When an argument is out of its range.
+        """
         force = _FORCE("force", force)
         duration = _DURATION("duration", duration)
         points = integer("points", points, 2, 10**6)

@@ -24,7 +24,19 @@ __all__ = ["WallPlant", "AugmentedPlant"]
 @dataclass(frozen=True)
 class AugmentedPlant:
     """The plant plus the handle position ``xi = int v``: ``x' = A x + B F``, ``v = Cv x``,
-    ``xi = Cx x`` (the state of the sampled loop and of the step response)."""
+    ``xi = Cx x`` (the state of the sampled loop and of the step response).
+
+    Parameters
+    ----------
+    A : numpy.ndarray
+        State matrix, the plant's plus the position row, shape (n + 1, n + 1).
+    B : numpy.ndarray
+        Input matrix (force at the handle [N]), shape (n + 1, 1).
+    Cv : numpy.ndarray
+        Output row of the handle velocity [m/s], shape (1, n + 1).
+    Cx : numpy.ndarray
+        Output row of the handle position [m] (the last state), shape (1, n + 1).
+    """
 
     A: np.ndarray
     B: np.ndarray
@@ -37,6 +49,13 @@ class WallPlant:
 
     ``m_w``, ``b_w`` are the rigid-body parameters of the robustness weight ``W`` (eq. 15):
     ``m``, ``b`` of a rigid handle, ``sum m_i``, ``sum g_i`` of a chain.
+
+    Parameters
+    ----------
+    settings : WallSettings
+        The design; its ``mass`` and ``damping`` make the rigid plant when ``device`` is None.
+    device : Device or None
+        The device chain read at the handle, or ``None`` for the rigid plant of eq. (7).
     """
 
     def __init__(self, settings: WallSettings, device: Device | None):
@@ -58,17 +77,41 @@ class WallPlant:
         return self.A.shape[0]
 
     def impedance(self, s: np.ndarray) -> np.ndarray:
-        """``1/P(s)``: ``m s + b``, or the chain's handle impedance (continued fraction)."""
+        """``1/P(s)``: ``m s + b``, or the chain's handle impedance (continued fraction).
+
+        Parameters
+        ----------
+        s : numpy.ndarray
+            Complex frequencies [rad/s], any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            The handle impedance [N s/m], complex, the shape of ``s``.
+        """
         s = np.asarray(s, dtype=complex)
         if self.device is None:
             return self.m_w * s + self.b_w
         return handle_impedance(self.device, s)
 
     def poles(self) -> np.ndarray:
+        """The open-loop poles of ``P(s)``, the eigenvalues of ``A``.
+
+        Returns
+        -------
+        numpy.ndarray
+            Poles [rad/s], complex, shape (n,) (empty for a zero-order plant).
+        """
         return np.linalg.eigvals(self.A) if self.order else np.zeros(0, complex)
 
     def augmented(self) -> AugmentedPlant:
-        """The plant plus the handle position (last state)."""
+        """The plant plus the handle position (last state).
+
+        Returns
+        -------
+        AugmentedPlant
+            The realization with ``n + 1`` states.
+        """
         n = self.order
         A = np.zeros((n + 1, n + 1))
         A[:n, :n] = self.A

@@ -30,7 +30,13 @@ def weight_parameters(settings: WallSettings, alpha: float | None, beta: float |
 
 
 class RobustnessAnalysis:
-    """``||L||_inf`` (eq. 16-17) of one design, for one ``B_c`` or many."""
+    """``||L||_inf`` (eq. 16-17) of one design, for one ``B_c`` or many.
+
+    Parameters
+    ----------
+    loops : LoopRealizations
+        The loop realisations of the design.
+    """
 
     def __init__(self, loops: LoopRealizations):
         self.loops = loops
@@ -38,15 +44,44 @@ class RobustnessAnalysis:
         self.plant = loops.plant
 
     def high_frequency_limit(self, alpha: float) -> float:
-        """``lim |L|`` as ``w -> inf`` (continuous holds): ``alpha m_W / m_handle``."""
+        """``lim |L|`` as ``w -> inf`` (continuous holds): ``alpha m_W / m_handle``.
+
+        Parameters
+        ----------
+        alpha : float
+            Mass uncertainty of the weight ``W = alpha m s + beta b`` (eq. 15).
+
+        Returns
+        -------
+        float
+            The limit (dimensionless); ``alpha`` for a rigid handle.
+        """
         return alpha * self.plant.m_w / self.plant.handle_mass
 
     def zoh_grid_end(self) -> float:
-        """Upper end of the ``zoh`` grid (128 half-periods above Nyquist)."""
+        """Upper end of the ``zoh`` grid (128 half-periods above Nyquist).
+
+        Returns
+        -------
+        float
+            ``128 pi / T`` [rad/s].
+        """
         return 128 * math.pi / self.settings.sample_time
 
     def peak_grid(self, bcs: np.ndarray) -> np.ndarray:
-        """The search grid shared by ``bcs``: log-spaced, plus points on every light resonance."""
+        """The search grid shared by ``bcs``: log-spaced, plus points on every light resonance.
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m], shape (R,).
+
+        Returns
+        -------
+        numpy.ndarray
+            Angular frequencies [rad/s], increasing and distinct, shape (P,); up to ``pi/T`` for
+            the ``discrete`` hold.
+        """
         st = self.settings
         T = st.sample_time
         c = self.loops.singularities(bcs)
@@ -85,7 +120,22 @@ class RobustnessAnalysis:
         return ev
 
     def peaks(self, bcs: np.ndarray, alpha: float, beta: float) -> list[RobustnessPeak]:
-        """``||L||_inf`` for every ``B_c`` of ``bcs`` (one shared grid, batched refinement)."""
+        """``||L||_inf`` for every ``B_c`` of ``bcs`` (one shared grid, batched refinement).
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m], shape (R,).
+        alpha : float
+            Mass uncertainty of the weight ``W = alpha m s + beta b`` (eq. 15).
+        beta : float
+            Damping uncertainty of the weight ``W``.
+
+        Returns
+        -------
+        list of RobustnessPeak
+            One peak per ``B_c``, in the order of ``bcs``.
+        """
         st = self.settings
         disc = st.hold == "discrete"
         ev = self._magnitude2(bcs, alpha, beta)
@@ -118,6 +168,20 @@ class RobustnessAnalysis:
 
         Rigid plant: ``|W P|`` lies between ``beta`` and ``alpha``; chain: ``|W P|`` is bounded
         by its value on the grid end times 1.01 (its modes are far below the grid end).
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m].
+        alpha : float
+            Mass uncertainty of the weight ``W`` (eq. 15).
+        beta : float
+            Damping uncertainty of the weight ``W``.
+
+        Returns
+        -------
+        float
+            The bound (dimensionless); ``inf`` when ``|H P C| >= 1`` at the grid end.
         """
         st = self.settings
         w0 = self.zoh_grid_end()
@@ -132,6 +196,26 @@ class RobustnessAnalysis:
         return wp / (1.0 - hpc)
 
     def robustness_peak(self, bc: float, alpha: float | None = None, beta: float | None = None) -> RobustnessPeak:
-        """``||L||_inf`` (eq. 16-17) and its frequency; ``alpha``, ``beta`` default to the settings."""
+        """``||L||_inf`` (eq. 16-17) and its frequency; ``alpha``, ``beta`` default to the settings.
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m], finite.
+        alpha : float or None, optional
+            Mass uncertainty of the weight ``W`` (eq. 15), >= 0; ``None`` for the settings' value.
+        beta : float or None, optional
+            Damping uncertainty of the weight ``W``, >= 0; ``None`` for the settings' value.
+
+        Returns
+        -------
+        RobustnessPeak
+            The peak gain, its frequency and whether it is certified.
+
+        Raises
+        ------
+        ValidationError
+            When ``bc`` is not finite or ``alpha``/``beta`` is negative or not finite.
+        """
         a, b = weight_parameters(self.settings, alpha, beta)
         return self.peaks(check_bc(bc)[0:1], a, b)[0]

@@ -21,7 +21,15 @@ __all__ = ["DampingSearch"]
 
 
 class DampingSearch:
-    """Fig. 8 curves and the optimal ``B_c`` of one design."""
+    """Fig. 8 curves and the optimal ``B_c`` of one design.
+
+    Parameters
+    ----------
+    index : TransparencyIndex
+        ``J`` of the design.
+    robustness : RobustnessAnalysis
+        ``||L||_inf`` of the same design.
+    """
 
     def __init__(self, index: TransparencyIndex, robustness: RobustnessAnalysis):
         self.index = index
@@ -29,7 +37,28 @@ class DampingSearch:
         self.settings = index.settings
 
     def tradeoff(self, bc_values=None, alpha: float | None = None, beta: float | None = None) -> TradeoffCurves:
-        """``J(B_c)`` and ``||L||_inf(B_c)`` over ``bc_values`` (default: the settings' range)."""
+        """``J(B_c)`` and ``||L||_inf(B_c)`` over ``bc_values`` (default: the settings' range).
+
+        Parameters
+        ----------
+        bc_values : array_like or None, optional
+            Controller dampings ``B_c`` [N s/m], finite, shape (N,); ``None`` for the settings'
+            ``bc_count`` values from ``bc_min`` to ``bc_max``.
+        alpha : float or None, optional
+            Mass uncertainty of the weight ``W`` (eq. 15), >= 0; ``None`` for the settings' value.
+        beta : float or None, optional
+            Damping uncertainty of the weight ``W``, >= 0; ``None`` for the settings' value.
+
+        Returns
+        -------
+        TradeoffCurves
+            ``J``, ``||L||_inf`` and the peak frequencies at each ``B_c``.
+
+        Raises
+        ------
+        ValidationError
+            When a ``B_c`` is not finite or ``alpha``/``beta`` is negative.
+        """
         st = self.settings
         a, b = weight_parameters(st, alpha, beta)
         bcs = (np.linspace(st.bc_min, st.bc_max, st.bc_count) if bc_values is None
@@ -46,6 +75,26 @@ class DampingSearch:
         A scan of the range (``bc_count`` values) brackets the best feasible point; Brent's
         method polishes it; if the unconstrained minimizer violates eq. (17), the constraint
         boundary is found by Brent's root finder and returned instead.
+
+        Parameters
+        ----------
+        alpha : float or None, optional
+            Mass uncertainty of the weight ``W`` (eq. 15), >= 0; ``None`` for the settings' value.
+        beta : float or None, optional
+            Damping uncertainty of the weight ``W``, >= 0; ``None`` for the settings' value.
+        bc_range : tuple of (float, float) or None, optional
+            The searched ``(low, high)`` range of ``B_c`` [N s/m]; ``None`` for the settings'
+            ``(bc_min, bc_max)``.
+
+        Returns
+        -------
+        OptimalDamping
+            The optimum, or ``feasible = False`` with the reason.
+
+        Raises
+        ------
+        ValidationError
+            When ``alpha``/``beta`` is negative or the range is not finite.
         """
         st = self.settings
         a, b = weight_parameters(st, alpha, beta)

@@ -52,6 +52,52 @@ class WallSettings(SettingsRecord):
     ``plant = "chain"`` uses the profile's device chain instead of ``mass``/``damping``.
     ``bc_min .. bc_max`` (``bc_count`` values, linear) is the range of the Fig. 8 curves and of
     the search for the optimum.
+
+    Parameters
+    ----------
+    mass : float, optional
+        Handle mass ``m`` of the rigid plant ``P(s) = 1/(m s + b)`` (eq. 7) [kg].
+    damping : float, optional
+        Device damping ``b`` of the rigid plant [N s/m].
+    wall_stiffness : float, optional
+        Virtual-wall stiffness ``K`` of ``V(s) = (K + B s)/s`` (eq. 8) [N/m], >= 0.
+    wall_damping : float, optional
+        Virtual-wall damping ``B`` [N s/m], >= 0; > 0 when ``wall_stiffness`` is 0.
+    controller_stiffness : float or None, optional
+        Controller stiffness ``K_c`` of eq. (12) [N/m], >= 0; ``None`` for ``K_c = K``.
+    sample_time : float, optional
+        Sample time ``T`` of the controller [s].
+    hold : str, optional
+        The hold model, one of :data:`~analysis.transparency.holds.HOLDS`.
+    lowpass_damping : float, optional
+        Damping ratio ``zeta`` of the ``lowpass2`` hold, > 0.
+    weight_order : int, optional
+        Order ``r`` of the weight ``w1 = (w_c/(s + w_c))^r`` of eq. (11), 0 .. 8.
+    weight_cutoff : float, optional
+        Cut-off ``w_c`` of the weight ``w1`` [rad/s], > 0.
+    alpha : float, optional
+        Mass uncertainty ``alpha`` of the weight ``W = alpha m s + beta b`` (eq. 15), in [0, 1).
+    beta : float, optional
+        Damping uncertainty ``beta`` of the weight ``W`` (eq. 15), in [0, 1].
+    bc_min : float, optional
+        Lower end of the ``B_c`` range [N s/m].
+    bc_max : float, optional
+        Upper end of the ``B_c`` range [N s/m], > ``bc_min``.
+    bc_count : int, optional
+        Number of ``B_c`` values of the range (linear spacing), 2 .. 10000.
+    plant : str, optional
+        ``"rigid"`` (``mass``/``damping``) or ``"chain"`` (the profile's device chain); see
+        :data:`PLANTS`.
+    step_force : float, optional
+        Human-force step of the step response [N], finite.
+    step_duration : float, optional
+        Duration of the step response [s], in (0, 100].
+
+    Raises
+    ------
+    ValidationError
+        When a field is out of its range, ``wall_stiffness`` and ``wall_damping`` are both 0, or
+        ``bc_max <= bc_min``.
     """
 
     record_name = "transparency"
@@ -116,6 +162,34 @@ class ObserverSettings(SettingsRecord):
     ``preset`` is the two-axis device (:data:`OBSERVER_PRESETS`); ``step_force`` (N, on x) and
     ``step_duration`` (s) the cross-coupling time response.  The observer itself is
     :mod:`analysis.transparency.observer`.
+
+    Parameters
+    ----------
+    nominal_mass : float, optional
+        Nominal mass ``M`` of ``P_n = 1/(M s + B)`` (eq. 3) [kg].
+    nominal_damping : float, optional
+        Nominal damping ``B`` of ``P_n`` [N s/m].
+    order : int, optional
+        Order ``r`` of the binomial low-pass ``Q = (w_Q/(s + w_Q))^r``, 1 .. 8.
+    cutoff : float, optional
+        Cut-off ``w_Q`` of ``Q`` [rad/s], > 0.
+    alpha : float, optional
+        Mass uncertainty of the real plant ``P~`` (eq. 13), in [0, 1).
+    beta : float, optional
+        Damping uncertainty of the real plant ``P~`` (eq. 13), in [0, 1].
+    delta : float, optional
+        The perturbation ``Delta`` of eq. (13), in [-1, 1].
+    preset : str, optional
+        The two-axis device, one of :data:`OBSERVER_PRESETS`.
+    step_force : float, optional
+        Commanded force step on x [N], finite.
+    step_duration : float, optional
+        Duration of the cross-coupling time response [s], in (0, 100].
+
+    Raises
+    ------
+    ValidationError
+        When a field is out of its range.
     """
 
     record_name = "observer"
@@ -153,6 +227,21 @@ class IndexResult:
 
     ``finite`` is False (and ``index = inf``) when the weighted error is not in H2; ``reason``
     says why.  ``method`` is ``"lyapunov"`` or ``"quadrature"``; ``nodes`` counts quadrature nodes.
+
+    Parameters
+    ----------
+    bc : float
+        The controller damping ``B_c`` [N s/m].
+    index : float
+        ``J(B_c)``, the squared H2 norm of eq. (11) [(m/s/N)^2 rad/s]; ``inf`` when not finite.
+    finite : bool
+        Whether ``J`` is finite.
+    reason : str
+        Why ``J`` is not finite; ``""`` when it is.
+    method : str
+        ``"lyapunov"`` or ``"quadrature"``.
+    nodes : int, optional
+        Number of quadrature nodes (0 for ``"lyapunov"``).
     """
 
     bc: float
@@ -167,7 +256,25 @@ class IndexResult:
 class RobustnessPeak:
     """``||L||_inf`` of eq. (16-17): ``gain`` (absolute) at ``frequency`` (rad/s, ``inf`` when the
     supremum is the high-frequency limit ``limit``).  ``certified`` is False only if part of the
-    frequency axis could not be bounded below the reported peak (``zoh`` ripple)."""
+    frequency axis could not be bounded below the reported peak (``zoh`` ripple).
+
+    Parameters
+    ----------
+    bc : float
+        The controller damping ``B_c`` [N s/m].
+    gain : float
+        ``||L||_inf`` (absolute, dimensionless).
+    frequency : float
+        Frequency of the peak [rad/s]; ``inf`` when the supremum is ``limit``.
+    alpha : float
+        Mass uncertainty of the weight ``W`` (eq. 15).
+    beta : float
+        Damping uncertainty of the weight ``W`` (eq. 15).
+    limit : float
+        ``lim |L|`` as ``w -> inf`` (0 for the ``discrete`` hold).
+    certified : bool, optional
+        False if part of the frequency axis could not be bounded below ``gain``.
+    """
 
     bc: float
     gain: float
@@ -194,6 +301,25 @@ class OptimalDamping:
     ``constrained`` is True when the unconstrained minimizer (``unconstrained_bc``) violates
     eq. (17) and the optimum sits on the constraint.  ``feasible`` is False (``bc = nan``) when no
     ``B_c`` in the searched range satisfies it.
+
+    Parameters
+    ----------
+    bc : float
+        The optimal controller damping ``B_c`` [N s/m]; ``nan`` when not feasible.
+    index : float
+        ``J`` at ``bc`` (eq. 11); ``inf`` when not feasible.
+    peak : float
+        ``||L||_inf`` at ``bc`` (eq. 16-17); ``nan`` when not feasible.
+    peak_frequency : float
+        Frequency of that peak [rad/s] (``inf`` at the high-frequency limit).
+    feasible : bool
+        Whether some ``B_c`` of the range satisfies ``||L||_inf <= 1``.
+    constrained : bool
+        Whether the optimum sits on the constraint ``||L||_inf = 1``.
+    unconstrained_bc : float
+        The minimizer of ``J`` without the constraint [N s/m]; ``nan`` when ``J`` is nowhere finite.
+    reason : str, optional
+        Why there is no optimum; ``""`` when feasible.
     """
 
     bc: float
@@ -208,7 +334,23 @@ class OptimalDamping:
 
 @dataclass(frozen=True)
 class TradeoffCurves:
-    """``J(B_c)`` and ``||L||_inf(B_c)`` (Fig. 8); ``index`` is ``inf`` where ``J`` is not finite."""
+    """``J(B_c)`` and ``||L||_inf(B_c)`` (Fig. 8); ``index`` is ``inf`` where ``J`` is not finite.
+
+    Parameters
+    ----------
+    bc : numpy.ndarray
+        Controller dampings ``B_c`` [N s/m], shape (N,).
+    index : numpy.ndarray
+        ``J`` at each ``B_c`` (eq. 11), ``inf`` where not finite, shape (N,).
+    peak : numpy.ndarray
+        ``||L||_inf`` at each ``B_c`` (eq. 16-17), shape (N,).
+    peak_frequency : numpy.ndarray
+        Frequency of each peak [rad/s] (``inf`` at the high-frequency limit), shape (N,).
+    alpha : float, optional
+        Mass uncertainty of the weight ``W`` (eq. 15).
+    beta : float, optional
+        Damping uncertainty of the weight ``W`` (eq. 15).
+    """
 
     bc: np.ndarray
     index: np.ndarray
@@ -225,6 +367,23 @@ class StepResponse:
     ``t`` (s), ``position`` (m) and ``velocity`` (m/s) of the handle, exact between samples too;
     ``force`` the actuator (wall) force command, held over each sample; ``human_force`` the step;
     ``wall_position`` the ideal virtual wall's answer ``F/K (1 - e^{-K t/B})``.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times [s], ``substeps`` points per sample, shape (N,).
+    force : numpy.ndarray
+        Actuator (wall) force command, held over each sample [N], shape (N,).
+    position : numpy.ndarray
+        Handle position [m], shape (N,).
+    velocity : numpy.ndarray
+        Handle velocity [m/s], shape (N,).
+    human_force : numpy.ndarray
+        The human-force step [N], shape (N,).
+    wall_position : numpy.ndarray
+        Position of the ideal virtual wall under the same step [m], shape (N,).
+    bc : float
+        The controller damping ``B_c`` [N s/m].
     """
 
     t: np.ndarray

@@ -26,14 +26,36 @@ def unstable_reason(ev: np.ndarray) -> str:
 
 
 class ClosedLoopStability:
-    """Stability per ``B_c`` of the loop of one design, with the reason when unstable."""
+    """Stability per ``B_c`` of the loop of one design, with the reason when unstable.
+
+    Parameters
+    ----------
+    loops : LoopRealizations
+        The loop realisations of the design.
+    """
 
     def __init__(self, loops: LoopRealizations):
         self.loops = loops
 
     def stable_many(self, bcs: np.ndarray, nodes: Nodes) -> tuple[np.ndarray, list[str]]:
         """Closed-loop stability per ``B_c`` and the reason when unstable; ``nodes`` are the
-        quadrature nodes of ``J`` (used by the ``zoh`` test)."""
+        quadrature nodes of ``J`` (used by the ``zoh`` test).
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m], shape (R,).
+        nodes : tuple of numpy.ndarray
+            ``(w, wt, w_tail, wt_tail)`` of
+            :meth:`~analysis.transparency.index.TransparencyIndex.quadrature_nodes` [rad/s].
+
+        Returns
+        -------
+        stable : numpy.ndarray
+            Whether each loop is asymptotically stable, bool, shape (R,).
+        reasons : list of str
+            Why each loop is unstable; ``""`` where stable (R entries).
+        """
         st = self.loops.settings
         if st.hold == "zoh":
             return self.zoh_stable_many(bcs, nodes)
@@ -52,6 +74,23 @@ class ClosedLoopStability:
         a passive device) and ``~ m_0 s^d`` on a large arc, ``d = 2`` (1 if ``K_c = 0``), so the
         number of RHP closed-loop poles is ``d/2 - Delta arg g(j w)|_{0+}^{inf} / pi``; the phase
         is tracked on the quadrature nodes (panels resolve every surrogate resonance).
+        A loop whose phase steps by a quarter turn or more between nodes, or where ``g`` vanishes,
+        counts as unresolved (not stable).
+
+        Parameters
+        ----------
+        bcs : numpy.ndarray
+            Controller dampings ``B_c`` [N s/m], shape (R,).
+        nodes : tuple of numpy.ndarray
+            ``(w, wt, w_tail, wt_tail)`` of
+            :meth:`~analysis.transparency.index.TransparencyIndex.quadrature_nodes` [rad/s].
+
+        Returns
+        -------
+        stable : numpy.ndarray
+            Whether each loop is resolved and has no right-half-plane pole, bool, shape (R,).
+        reasons : list of str
+            Why each loop is not stable; ``""`` where stable (R entries).
         """
         w0, _, w1, _ = nodes
         st = self.loops.settings

@@ -45,7 +45,15 @@ def _intersample_maps(A: np.ndarray, B: np.ndarray, tau: float, substeps: int) -
 
 
 class StepSimulation:
-    """Human-force steps on the exact sampled loop of one design."""
+    """Human-force steps on the exact sampled loop of one design.
+
+    Parameters
+    ----------
+    settings : WallSettings
+        The design (sample time, ``K_c``, default step force and duration).
+    plant : WallPlant
+        Its plant ``P(s)``.
+    """
 
     def __init__(self, settings: WallSettings, plant: WallPlant):
         self.settings = settings
@@ -57,6 +65,27 @@ class StepSimulation:
 
         The device starts at rest at the wall surface ``x = 0``; the controller
         ``u_k = K_c x_k + B_c (x_k - x_{k-1})/T`` is held over each sample.
+
+        Parameters
+        ----------
+        bc : float
+            The controller damping ``B_c`` [N s/m], finite.
+        force : float or None, optional
+            The human-force step [N], finite; ``None`` for the settings' ``step_force``.
+        duration : float or None, optional
+            Duration [s], in (0, 100]; ``None`` for the settings' ``step_duration``.
+        substeps : int, optional
+            Points per sample between the samples, 1 .. 1000.
+
+        Returns
+        -------
+        StepResponse
+            ``ceil(duration/T) * substeps + 1`` points from ``t = 0``.
+
+        Raises
+        ------
+        ValidationError
+            When an argument is out of its range.
         """
         st = self.settings
         bc = float(check_bc(bc)[0])
