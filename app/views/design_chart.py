@@ -15,6 +15,7 @@ from analysis import MassChart, StiffnessChart
 from analysis.study import IMPEDANCE, ChartResult, DisplayKind, display_kind
 from app.views.pickable import PickablePlotView
 from app.views.base import Series, clean_xy, mark_design_point, plain
+from app.views.floor_fill import FloorFill
 from app.views.placement import CenterMessage, LegendPlacer
 
 __all__ = ["DesignChart"]
@@ -30,7 +31,8 @@ class DesignChart(PickablePlotView):
         self.lower = self.curve(None, "#1f5fbf")
         self.fill = pg.FillBetweenItem(self.lower, self.upper, brush=pg.mkBrush(43, 138, 62, 50))
         self.fill.setZValue(-5)
-        self.plot.addItem(self.fill)
+        # impedance: the feasible gains reach down to the axis (no edge of their own below)
+        self.floor_fill = FloorFill(self.plot, self.lower, self.upper, self.fill)
         self.point = pg.PlotDataItem([], [], pen=None, symbol="o", symbolSize=12, symbolBrush="#c92a2a",
                                      symbolPen=pg.mkPen("w", width=1.5), name="current gains")
         self.point.setZValue(20)
@@ -77,7 +79,7 @@ class DesignChart(PickablePlotView):
         self.bump()
 
     def _draw_stiffness(self, ch: StiffnessChart) -> None:
-        """Largest k_c over b_c (eq. 9), filled down to a decade below its minimum."""
+        """Largest k_c over b_c (eq. 9), filled down to the axis (every lower k_c is feasible too)."""
         self.set_axis_labels("b_c", "N·s/m", "k_c", "N/m")
         self.title = "Design chart: largest stable k_c against b_c"
         kc = np.asarray(ch.kc, float)
@@ -93,10 +95,8 @@ class DesignChart(PickablePlotView):
             self._notes.append(f"no k_c ≥ 0 satisfies eq. 9 for b_c ≥ {plain(float(ch.bc[infeasible].min()))} "
                                "N·s/m (not drawn)")
         x, y, _ = clean_xy(ch.bc, kc, True, True)
-        base = float(y.min()) / 10 if y.size else 1.0
         self.upper.setData(x, y)
-        self.lower.setData(x, np.full(x.size, base))
-        self.lower.setVisible(False)
+        self.floor_fill.set_enabled(True)
         self.legend.getLabel(self.upper).setText("largest k<sub>c</sub> (eq. 9)")
         self._series = [Series("largest k_c", "b_c (N s/m)", "k_c max (N/m)", x, y)]
         self._set_empty("" if x.size else
@@ -119,9 +119,9 @@ class DesignChart(PickablePlotView):
         if not np.all(ok):
             self._notes.append(f"no b_c satisfies eq. 21 at {int((~ok).sum())} of {ok.size} m_c value(s)")
         x = np.asarray(ch.mc, float)[ok]
+        self.floor_fill.set_enabled(False)
         self.upper.setData(x, high[ok])
         self.lower.setData(x, low[ok])
-        self.lower.setVisible(True)
         self.legend.getLabel(self.upper).setText("b<sub>c</sub> edges (eq. 21)")
         self._series = [Series("b_c low", "m_c (kg)", "b_c low (N s/m)", x, low[ok]),
                         Series("b_c high", "m_c (kg)", "b_c high (N s/m)", x, high[ok])]

@@ -19,6 +19,7 @@ from analysis.study.quantities import format_number, rich_numbers
 
 from app.views.pickable import PickablePlotView
 from app.views.base import Series, clean_xy, mark_design_point
+from app.views.floor_fill import FloorFill
 
 __all__ = ["ZWidthRegionView", "B_LABEL", "K_LABEL"]
 
@@ -35,11 +36,11 @@ class ZWidthRegionView(PickablePlotView):
         self.set_log(True, True)
         self.set_axis_labels("B", "N·s/m", "K", "N/m")
         self.floor = self.curve(None, "#2b8a3e", 0.0)
-        self.floor.setPen(None)  # only the shading's lower edge
+        self.floor.setPen(None)  # only the shading's lower edge: at the axis (every lower K is stable too)
         self.exact = self.curve("exact largest stable K", "#2b8a3e", 2.5)
         self.fill = pg.FillBetweenItem(self.floor, self.exact, brush=pg.mkBrush(43, 138, 62, 45))
         self.fill.setZValue(-5)
-        self.plot.addItem(self.fill)
+        self.floor_fill = FloorFill(self.plot, self.floor, self.exact, self.fill)
         self.passive = self.curve("passive (Colgate–Schenkel)", "#1f5fbf", 2.0, Qt.PenStyle.DashLine)
         self.twoport = self.curve("two-port limit (eq. 9)", "#d9480f", 2.0, Qt.PenStyle.DashDotLine)
         self.stable_trials = pg.PlotDataItem([], [], pen=None, symbol="o", symbolSize=8, symbolBrush="#2b8a3e",
@@ -74,8 +75,9 @@ class ZWidthRegionView(PickablePlotView):
         self._series = []
         notes: list[str] = []
         if region is None:
-            for c in (self.floor, self.exact, self.passive, self.twoport):
+            for c in (self.exact, self.passive, self.twoport):
                 c.setData([], [])
+            self.floor_fill.update()
             self.summary = ""
         else:
             self._draw_curves(region, notes)
@@ -94,10 +96,7 @@ class ZWidthRegionView(PickablePlotView):
         k = np.minimum(np.asarray(r.k_max, float), r.k_ceiling)
         x, y, _ = clean_xy(r.b, k, True, True)
         self.exact.setData(x, y)
-        drawn = [v for v in (y, clean_xy(r.b, r.k_passive, True, True)[1], clean_xy(r.b, r.k_twoport, True, True)[1])
-                 if v.size]
-        low = min(float(v.min()) for v in drawn) / 3.0 if drawn else r.k_floor
-        self.floor.setData(x, np.full(x.size, max(low, r.k_floor)))  # the shading's lower edge, near the data
+        self.floor_fill.update()
         if np.any(np.asarray(r.k_max) <= r.k_floor):
             notes.append("no stable K ≥ 1 N/m at some B (not drawn)")
         xp, yp, _ = clean_xy(r.b, r.k_passive, True, True)

@@ -120,3 +120,46 @@ def test_band_segments_end_at_the_crossings():
     assert xb[0] == pytest.approx(6.298, abs=1e-3) and xb[-1] == pytest.approx(9.431, abs=1e-3)
     assert np.all(ha >= la) and np.all(hb >= lb)
     assert band_segments(x, np.ones(11), x, np.zeros(11)) == []
+
+
+def _fill_bottom(view) -> float:
+    """The lowest y (view coordinates: log10) the shading reaches."""
+    return float(view.fill.path().boundingRect().top())  # y grows upward in view coordinates
+
+
+def test_design_chart_shades_the_feasible_gains_down_to_the_axis(chart):
+    """Every k_c below the largest is feasible: the shading reaches the axis's lower edge (it stopped
+    at a decade below the curve's minimum, about 4.6 kN/m on the HBFD), also after zooming out."""
+    vb = chart.plot.getViewBox()
+    _ux, uy = chart.upper.getData()
+    assert _fill_bottom(chart) <= vb.viewRange()[1][0]
+    assert _fill_bottom(chart) <= float(np.min(uy)) - 2.9  # well below the data (3 decades)
+    vb.setYRange(vb.viewRange()[1][0] - 6, vb.viewRange()[1][1], padding=0)  # zoomed out 6 decades below
+    assert _fill_bottom(chart) <= vb.viewRange()[1][0]
+    # the shading is no part of the auto-range: the axis still fits the data
+    vb.enableAutoRange()
+    vb.updateAutoRange()
+    assert vb.viewRange()[1][0] > float(np.min(uy)) - 1.0
+
+
+def test_zwidth_region_shades_the_stable_walls_down_to_the_axis(qtbot):
+    from analysis.sampled import VelocityFilter, ZWidthRegion
+    from app.views.zwidth_region_view import ZWidthRegionView
+
+    b = np.geomspace(0.1, 100.0, 60)
+    region = ZWidthRegion(b=b, k_max=1e4 * (1 + b), k_passive=5e3 * np.ones_like(b),
+                          k_twoport=4e4 * np.ones_like(b), area_linear=1.0, area_log=1.0, delay_samples=0,
+                          velocity_filter=VelocityFilter("backward"), k_floor=1.0, k_ceiling=1e9)
+    view = ZWidthRegionView()
+    qtbot.addWidget(view)
+    view.update_region(region)
+    view.resize(700, 420)
+    view.show()
+    qtbot.waitExposed(view)
+    vb = view.plot.getViewBox()
+    assert vb.viewRange()[1][0] < np.log10(5e3)  # the passive curve is in view
+    assert _fill_bottom(view) <= vb.viewRange()[1][0]
+    vb.setYRange(-2, 8, padding=0)
+    assert _fill_bottom(view) <= -2
+    top = view.fill.path().boundingRect().bottom()
+    assert top == pytest.approx(np.log10(1e4 * 101), abs=1e-6)  # up to the exact curve, no further
