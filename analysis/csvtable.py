@@ -36,15 +36,29 @@ _WIDE_BOMS = ((codecs.BOM_UTF32_LE, "UTF-32"), (codecs.BOM_UTF32_BE, "UTF-32"),
 class CsvError(ValueError):
     """A CSV file (or a cell of it) cannot be used.
 
+    The message is ``"<where>: <reason>"`` (:attr:`where`), or ``reason`` alone when no location
+    is known.
+
+    Parameters
+    ----------
+    reason : str
+        What is wrong, without the location.
+    file : str or os.PathLike or None, optional
+        The file, or ``None`` for data passed in memory.
+    line : int or None, optional
+        1-based line number in the file (header = line 1 when nothing precedes it), or ``None``.
+    column : str or None, optional
+        Column name, or ``None`` when the problem is the file or a row as a whole.
+
     Attributes
     ----------
-    file:
+    file : str or None
         The file as given, or ``None`` for data passed in memory.
-    line:
+    line : int or None
         1-based line number in the file (the number an editor shows), or ``None``.
-    column:
+    column : str or None
         Column name, or ``None`` when the problem is the file or a row as a whole.
-    reason:
+    reason : str
         The message without the location prefix.
     """
 
@@ -167,22 +181,29 @@ def _number(text: str) -> float:
     return float(text)
 
 
+def _shown(cell: str) -> str:
+    """A cell as a message quotes it: a long one (a 5000-digit number) cut to its first characters."""
+    return repr(cell) if len(cell) <= 40 else f"{cell[:20]!r}... ({len(cell)} characters)"
+
+
 def _numbers(table: Table, column: str, cells: list[str], choices: Mapping[str, float] | None) -> np.ndarray:
     """One column's cells as floats, or the error at the first bad cell."""
     if choices is not None:
         allowed = " or ".join(repr(c) for c in choices)
         for i, c in enumerate(cells):
             if c not in choices:
-                raise table.fail(f"{c!r} is not {allowed}" if c else f"empty: {allowed} is needed", i, column)
+                raise table.fail(f"{_shown(c)} is not {allowed}" if c else f"empty: {allowed} is needed", i, column)
         return np.array([choices[c] for c in cells], float)
     out = np.empty(len(cells))
     for i, c in enumerate(cells):
         try:
             v = _number(c)
         except ValueError:
-            raise table.fail(f"{c!r} is not a number" if c else "empty: a number is needed", i, column) from None
+            raise table.fail(f"{_shown(c)} is not a number" if c else "empty: a number is needed", i, column) from None
         if not math.isfinite(v):
-            raise table.fail(f"{c!r} is not finite", i, column)
+            overflow = not any(ch.isalpha() and ch not in "eE" for ch in c)  # digits too many, not "inf"
+            raise table.fail(f"{_shown(c)} is not finite" + (": number too long or too large" if overflow else ""),
+                             i, column)
         out[i] = v
     return out
 

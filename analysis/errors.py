@@ -49,7 +49,8 @@ class ValidationError(ValueError):
         self.value = value
         self.within = tuple(within)
         where = f"{field}[{index}]" if index is not None else field
-        super().__init__(f"{where} = {value!r} is invalid: allowed range is {allowed}")
+        shown = value.item() if type(value).__module__ == "numpy" and getattr(value, "ndim", None) == 0 else value
+        super().__init__(f"{where} = {shown!r} is invalid: allowed range is {allowed}")  # 0.45, not np.float64(0.45)
 
     def inside(self, record: str) -> ValidationError:
         """The same error, raised from inside the record field ``record`` (prepended to ``within``).

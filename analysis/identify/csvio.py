@@ -54,7 +54,8 @@ def _increasing(t: Table, column: str, positive: bool) -> None:
         raise MeasurementError("must be > 0", file=t.path, line=int(t.lines[0]), column=column)
     bad = np.flatnonzero(np.diff(v) <= 0)
     if bad.size:
-        raise MeasurementError(f"must increase strictly ({v[bad[0] + 1]!r} after {v[bad[0]]!r})", file=t.path,
+        raise MeasurementError(f"must increase strictly ({float(v[bad[0] + 1])!r} after {float(v[bad[0]])!r})",
+                               file=t.path,
                                line=int(t.lines[bad[0] + 1]), column=column)
 
 
@@ -92,7 +93,7 @@ def _response(t: Table, hline: int) -> np.ndarray:
     if a == "magnitude":
         bad = np.flatnonzero(x <= 0)
         if bad.size:
-            raise MeasurementError(f"magnitude must be > 0, got {x[bad[0]]!r}", file=t.path,
+            raise MeasurementError(f"magnitude must be > 0, got {float(x[bad[0]])!r}", file=t.path,
                                    line=int(t.lines[bad[0]]), column=a)
     else:
         x = 10.0 ** (x / 20.0)
@@ -113,7 +114,7 @@ def read_frf(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray, np.ndarra
     if coh is not None:
         bad = np.flatnonzero((coh < 0) | (coh > 1))
         if bad.size:
-            raise MeasurementError(f"coherence must be in [0, 1], got {coh[bad[0]]!r}", file=t.path,
+            raise MeasurementError(f"coherence must be in [0, 1], got {float(coh[bad[0]])!r}", file=t.path,
                                    line=int(t.lines[bad[0]]), column="coherence")
     return w, h, coh, t.path
 
@@ -128,6 +129,14 @@ def read_timeseries(path: str | os.PathLike, min_points: int = 64) -> tuple[np.n
     if t.lines.size < min_points:
         raise MeasurementError(f"{t.lines.size} samples: at least {min_points} are needed", file=t.path)
     _increasing(t, "time_s", positive=False)
+    from analysis.identify.welch import nonuniform_sample
+
+    j = nonuniform_sample(t.columns["time_s"])
+    if j is not None:  # the file's line, not the 0-based sample index estimate_frf would name
+        step = float(np.median(np.diff(t.columns["time_s"])))
+        raise MeasurementError(f"time must increase in uniform steps of {step:.6g} s (the median step); "
+                               f"{float(t.columns['time_s'][j])!r} after {float(t.columns['time_s'][j - 1])!r}",
+                               file=t.path, line=int(t.lines[j]), column="time_s")
     return t.columns["time_s"], t.columns["force_n"], t.columns["position_m"]
 
 

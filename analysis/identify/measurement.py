@@ -97,7 +97,7 @@ def make_measurement(frequency, response, quantity: str = "actuator", boundary: 
     if sample_time is not None:
         T = float(sample_time)
         if not (math.isfinite(T) and T > 0):
-            raise MeasurementError(f"sample_time = {sample_time!r}: must be > 0 and finite (s)", file=source)
+            raise MeasurementError(f"sample_time = {T!r}: must be > 0 and finite (s)", file=source)
         if w[-1] >= math.pi / T:
             raise MeasurementError(f"frequency {w[-1]:.6g} rad/s is not below Nyquist {math.pi / T:.6g} rad/s",
                                    file=source)

@@ -19,7 +19,7 @@ from scipy import signal
 from analysis.identify.errors import MeasurementError
 from analysis.identify.measurement import Measurement, make_measurement
 
-__all__ = ["estimate_frf", "default_segment"]
+__all__ = ["estimate_frf", "default_segment", "nonuniform_sample"]
 
 
 def default_segment(n: int) -> int:
@@ -40,13 +40,21 @@ def _check(t: np.ndarray, force: np.ndarray, position: np.ndarray, source: str |
         bad = np.flatnonzero(~np.isfinite(v))
         if bad.size:
             raise MeasurementError(f"non-finite value at sample {bad[0]}", file=source, column=name)
-    dt = np.diff(t)
+    j = nonuniform_sample(t)
+    if j is not None:
+        raise MeasurementError(f"time must increase in uniform steps (sample {j})", file=source, column="time_s")
+    return float(np.median(np.diff(t)))
+
+
+def nonuniform_sample(t: np.ndarray) -> int | None:
+    """The 0-based index of the first sample whose time step differs from the median step (by more
+    than 1e-6 of it), 1 when the median step is not > 0, or ``None`` when ``t`` is uniformly sampled."""
+    dt = np.diff(np.asarray(t, float))
     step = float(np.median(dt))
     bad = np.flatnonzero(np.abs(dt - step) > 1e-6 * abs(step) + 1e-12)
-    if not step > 0 or bad.size:
-        j = int(bad[0]) + 1 if bad.size else 1
-        raise MeasurementError(f"time must increase in uniform steps (sample {j})", file=source, column="time_s")
-    return step
+    if step > 0 and not bad.size:
+        return None
+    return int(bad[0]) + 1 if bad.size else 1
 
 
 def estimate_frf(t, force, position, quantity: str = "actuator", boundary: str = "free",

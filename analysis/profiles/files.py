@@ -38,6 +38,25 @@ def _reject_duplicates(pairs: list[tuple[str, object]]) -> dict:
     return out
 
 
+class _LongNumber(Exception):
+    pass
+
+
+def _parse_int(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:  # more digits than sys.get_int_max_str_digits(): Python's message is about sys
+        raise _LongNumber(text) from None
+
+
+def _long_number(text: str, number: str) -> str:
+    """Where ``number`` is in ``text``, as :class:`json.JSONDecodeError` words it."""
+    pos = max(text.find(number), 0)
+    line = text.count("\n", 0, pos) + 1
+    column = pos - text.rfind("\n", 0, pos)
+    return f"line {line}, column {column}"
+
+
 def read_json(path: str | os.PathLike) -> object:
     """The parsed JSON of a file (UTF-8, optional BOM; no NaN, Infinity or duplicate keys).
 
@@ -67,7 +86,8 @@ def read_json(path: str | os.PathLike) -> object:
     except UnicodeDecodeError as exc:
         raise ProfileError(f"not UTF-8 text (byte {exc.start}): {exc.reason}", path=path) from exc
     try:
-        return json.loads(text, parse_constant=NonFinite, object_pairs_hook=_reject_duplicates)
+        return json.loads(text, parse_constant=NonFinite, object_pairs_hook=_reject_duplicates,
+                          parse_int=_parse_int)
     except json.JSONDecodeError as exc:
         raise ProfileError(
             f"invalid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg}",
@@ -78,6 +98,10 @@ def read_json(path: str | os.PathLike) -> object:
         raise ProfileError(
             f"invalid JSON: duplicate key {json.dumps(exc.args[0])} in an object", path=path
         ) from None
+    except _LongNumber as exc:
+        digits = len(exc.args[0].lstrip("-"))
+        raise ProfileError(f"invalid JSON at {_long_number(text, exc.args[0])}: number too long ({digits} digits)",
+                           path=path, expected="valid JSON") from None
     except RecursionError:
         raise ProfileError("invalid JSON: nested too deeply", path=path) from None
     except Exception as exc:  # noqa: BLE001

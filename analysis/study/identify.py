@@ -120,7 +120,8 @@ def parse_fixed(items: Sequence[str]) -> dict[str, float]:
     Raises
     ------
     ValueError
-        When an item is not ``KEY=VALUE`` with a finite value > 0 (the message names it).
+        When an item is not ``KEY=VALUE`` with a finite value, > 0 for masses and stiffnesses and
+        >= 0 for dampings and ground dampings (the message names it).
     """
     out = {}
     for item in items:
@@ -129,8 +130,11 @@ def parse_fixed(items: Sequence[str]) -> dict[str, float]:
             number = float(value)
         except ValueError:
             number = math.nan
-        if not sep or not key.strip() or not (math.isfinite(number) and number > 0):
-            raise ValueError(f"--fix {item!r}: expected KEY=VALUE with a value > 0, e.g. masses[0]=0.2")
+        # the rule of analysis.identify.fit_chain: masses and stiffnesses > 0, dampings >= 0
+        positive = key.partition("[")[0].strip() in ("masses", "stiffnesses")
+        if not sep or not key.strip() or not (math.isfinite(number) and (number > 0 if positive else number >= 0)):
+            raise ValueError(f"--fix {item!r}: expected KEY=VALUE with a value > 0 (>= 0 for dampings and "
+                             "ground_dampings), e.g. masses[0]=0.2")
         out[key.strip()] = number
     return out
 

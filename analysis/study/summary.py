@@ -118,6 +118,12 @@ def _n(value: Any) -> str:
     return format_number(value)
 
 
+def _ns(values: Any) -> str:
+    """``[0.08006, 2.3]``: a list of numbers through :func:`format_number` (a fitted mass is not
+    printed as 0.08005979194545117)."""
+    return "[" + ", ".join(format_number(v) for v in values) + "]"
+
+
 def _verdict_lines(d: dict[str, Any], kind: DisplayKind) -> list[str]:
     mu = kind.margin_unit
     return [
@@ -156,8 +162,8 @@ def format_summary(d: dict[str, Any]) -> str:
     fd, mm = a["design"]["feasible_damping"], a["design"]["min_mass"]
     lines = [
         f"Profile: {p['name']}  (display: {p['display']})",
-        f"  masses {p['masses']} kg, stiffnesses {p['stiffnesses']} N/m",
-        f"  dampings {[round(x, 4) for x in p['dampings']]} N s/m, ground {p['ground_dampings']} N s/m",
+        f"  masses {_ns(p['masses'])} kg, stiffnesses {_ns(p['stiffnesses'])} N/m",
+        f"  dampings {_ns(p['dampings'])} N s/m, ground {_ns(p['ground_dampings'])} N s/m",
         f"  T = {p['sample_time']:g} s, band [{p['band'][0]:g}, {p['band'][1]:.6g}) rad/s",
         "",
         f"Impedance display, coupling k_c = {_q('kc', i['coupling']['kc'])}, b_c = {_q('bc', i['coupling']['bc'])}",
