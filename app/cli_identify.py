@@ -140,7 +140,10 @@ def run_identify(args: argparse.Namespace) -> int:
         return _fail(f"--delay {args.delay}: must be >= 0, and 0 without --sample-time", 2)
     clash = output_clash(args.output, [("MEASUREMENT", m) for m in args.measurements])
     if clash is None and not args.force:
-        clash = output_clash(args.output, [("--base", args.base)],
+        from analysis.resources import resource_path
+
+        base = ("--base", args.base) if args.base else ("--base (default)", resource_path("profiles", "hbfd.json"))
+        clash = output_clash(args.output, [base],
                              remedy="write the output to another file, or add --force to overwrite the base profile")
     if clash:
         return _fail(clash, 2)

@@ -66,6 +66,13 @@ def test_identify_over_the_base_profile_needs_force(frf, tmp_path, capsys):
     assert "identification" in json.loads(base.read_text())
 
 
+def test_identify_never_overwrites_the_default_base_without_force(frf, tmp_path, capsys):
+    before = HBFD.read_bytes()
+    r = run_cli(capsys, "identify", frf, "--masses", "2", "-o", HBFD)
+    assert r.returncode == 2 and "--base (default)" in r.stderr and "--force" in r.stderr
+    assert HBFD.read_bytes() == before
+
+
 @pytest.mark.parametrize("command", [["report"], ["export-plot", "--plot", "bound"]])
 def test_report_and_export_refuse_to_write_over_the_profile(tmp_path, capsys, command):
     # a profile named .pdf/.csv: the extension check passes, the clash check must refuse
