@@ -101,7 +101,30 @@ def _response(t: Table, hline: int) -> np.ndarray:
 
 
 def read_frf(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, str]:
-    """Frequencies (rad/s), complex response, coherence (or ``None``) and the file name."""
+    """Frequencies (rad/s), complex response, coherence (or ``None``) and the file name.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The FRF file (module doc: columns :data:`FRF_COLUMNS`).
+
+    Returns
+    -------
+    frequency : numpy.ndarray
+        Frequencies [rad/s] (converted from Hz when the file has ``frequency_hz``), > 0 and
+        strictly increasing, shape (F,).
+    response : numpy.ndarray
+        Complex response in the quantity's unit (m/N or N/N), shape (F,).
+    coherence : numpy.ndarray or None
+        Magnitude-squared coherence in [0, 1], shape (F,); ``None`` without the column.
+    path : str
+        The file as given.
+
+    Raises
+    ------
+    MeasurementError
+        For every fault of the file (module doc), with the file, line and column.
+    """
     t = read_table(path, FRF_COLUMNS)
     hline = t.header_line
     fcol = _one_of(t, _FREQ, "frequency", hline)
@@ -120,7 +143,30 @@ def read_frf(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
 
 def read_timeseries(path: str | os.PathLike, min_points: int = 64) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``time_s``, ``force_n``, ``position_m`` arrays of a time-series file (checked)."""
+    """``time_s``, ``force_n``, ``position_m`` arrays of a time-series file (checked).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The time-series file (module doc: columns :data:`TIME_COLUMNS`).
+    min_points : int, optional
+        Fewest data rows accepted.
+
+    Returns
+    -------
+    t : numpy.ndarray
+        Sample times [s], increasing in uniform steps, shape (N,).
+    force : numpy.ndarray
+        Actuator force [N], shape (N,).
+    position : numpy.ndarray
+        Position [m] (or a gauge force [N]), shape (N,).
+
+    Raises
+    ------
+    MeasurementError
+        For every fault of the file (module doc), a missing column, fewer than ``min_points``
+        rows or times that do not increase in uniform steps, with the file, line and column.
+    """
     t = read_table(path, TIME_COLUMNS)
     hline = t.header_line
     for c in TIME_COLUMNS:
@@ -144,7 +190,36 @@ def load_measurement(path: str | os.PathLike, quantity: str = "actuator", bounda
                      sample_time: float | None = None, delay_samples: int = 0, **welch) -> Measurement:
     """A :class:`~analysis.identify.Measurement` from an FRF file, or from a time-series file
     (recognised by its ``time_s`` column) through :func:`analysis.identify.estimate_frf`
-    (``welch`` keyword arguments: ``nperseg``, ``noverlap``, ``window``)."""
+    (``welch`` keyword arguments: ``nperseg``, ``noverlap``, ``window``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        An FRF or a time-series CSV file (module doc).
+    quantity : str, optional
+        ``"actuator"``, ``"handle"`` or ``"gauge"``.
+    boundary : str, optional
+        ``"free"`` or ``"clamped"``.
+    sample_time : float or None, optional
+        Controller sample period [s] of a measurement through the sampled controller; ``None``:
+        continuous.
+    delay_samples : int, optional
+        Computation delay [samples] (with ``sample_time`` only).
+    **welch
+        ``nperseg``, ``noverlap``, ``window`` of :func:`analysis.identify.estimate_frf` (time
+        series only).
+
+    Returns
+    -------
+    Measurement
+        The validated measurement, its ``source`` the file name.
+
+    Raises
+    ------
+    MeasurementError
+        For every fault of the file or of the measurement it makes (:func:`read_frf`,
+        :func:`read_timeseries`, :func:`~analysis.identify.make_measurement`), naming the file.
+    """
     name = os.fspath(path)
     if "time_s" in csvtable.read_header(name, error=MeasurementError)[1]:
         from analysis.identify.welch import estimate_frf

@@ -30,19 +30,21 @@ class Measurement:
 
     Attributes
     ----------
-    frequency:
-        Strictly increasing frequencies, rad/s, shape (F,).
-    response:
-        Complex response at ``frequency`` (m/N for ``actuator``/``handle``, N/N for ``gauge``).
-    quantity, boundary:
-        What was measured and how the handle was held.
-    sample_time:
+    frequency : numpy.ndarray
+        Strictly increasing frequencies [rad/s], shape (F,).
+    response : numpy.ndarray
+        Complex response at ``frequency`` (m/N for ``actuator``/``handle``, N/N for ``gauge``),
+        shape (F,).
+    quantity, boundary : str
+        What was measured (``"actuator"``, ``"handle"`` or ``"gauge"``) and how the handle was
+        held (``"free"`` or ``"clamped"``).
+    sample_time : float or None
         Controller sample period in s, or ``None`` for a continuous-time measurement.
-    delay_samples:
+    delay_samples : int
         Computation delay in samples (sampled measurements only).
-    coherence:
+    coherence : numpy.ndarray or None
         Magnitude-squared coherence in [0, 1], shape (F,), or ``None``.
-    source:
+    source : str or None
         File it came from, or ``None``.
     """
 
@@ -62,7 +64,19 @@ class Measurement:
     def weights(self, clip: tuple[float, float] = (1e-2, 1e2)) -> np.ndarray:
         """Least-squares weights per point: ``sqrt(gamma^2 / (1 - gamma^2))`` (the inverse standard
         deviation of the log-response of an H1 estimate, up to the number of averages) clipped to
-        ``clip`` relative to its median; uniform ``1`` without coherence."""
+        ``clip`` relative to its median; uniform ``1`` without coherence.
+
+        Parameters
+        ----------
+        clip : tuple of (float, float), optional
+            ``(low, high)`` bounds of the weights as multiples of their median.
+
+        Returns
+        -------
+        numpy.ndarray
+            The weights divided by their median (dimensionless), shape (F,); ones without
+            coherence.
+        """
         if self.coherence is None:
             return np.ones(self.size)
         g = np.clip(self.coherence, 1e-6, 1 - 1e-9)
@@ -74,7 +88,43 @@ class Measurement:
 def make_measurement(frequency, response, quantity: str = "actuator", boundary: str = "free",
                      sample_time: float | None = None, delay_samples: int = 0, coherence=None,
                      source: str | None = None) -> Measurement:
-    """Validate arrays into a :class:`Measurement` (errors are :class:`MeasurementError`)."""
+    """Validate arrays into a :class:`Measurement` (errors are :class:`MeasurementError`).
+
+    Parameters
+    ----------
+    frequency : array_like
+        Frequencies [rad/s], > 0 and strictly increasing, at least :data:`MIN_POINTS`; flattened
+        to shape (F,).
+    response : array_like
+        Complex response at ``frequency`` [m/N for ``actuator``/``handle``, N/N for ``gauge``],
+        finite and nonzero, shape (F,).
+    quantity : str, optional
+        ``"actuator"``, ``"handle"`` or ``"gauge"`` (:data:`MEASURED_QUANTITIES`).
+    boundary : str, optional
+        ``"free"`` or ``"clamped"``; a ``"handle"`` measurement needs ``"free"``.
+    sample_time : float or None, optional
+        Controller sample period [s], > 0 and finite, with every frequency below Nyquist
+        ``pi / sample_time``; ``None`` for a continuous-time measurement.
+    delay_samples : int, optional
+        Computation delay [samples], an integer >= 0; 0 without ``sample_time``.
+    coherence : array_like or None, optional
+        Magnitude-squared coherence in [0, 1], one value per frequency, or ``None``.
+    source : str or None, optional
+        File the data came from (named in every error), or ``None``.
+
+    Returns
+    -------
+    Measurement
+        The validated record, with float and complex copies of the arrays.
+
+    Raises
+    ------
+    MeasurementError
+        For an unknown quantity or boundary, a clamped handle, mismatched lengths, fewer than
+        :data:`MIN_POINTS` points, non-finite values, frequencies not > 0 and increasing, a zero
+        response, a bad sample time or frequency above Nyquist, a bad delay, or coherence outside
+        [0, 1] or of the wrong length.
+    """
     w = np.asarray(frequency, dtype=float).reshape(-1)
     h = np.asarray(response, dtype=complex).reshape(-1)
     if quantity not in MEASURED_QUANTITIES:

@@ -66,6 +66,47 @@ def estimate_frf(t, force, position, quantity: str = "actuator", boundary: str =
     sampled controller (force held by a ZOH, response sampled); it must equal the time step.
     ``nperseg`` defaults to :func:`default_segment`, ``noverlap`` to half a segment.  The DC bin
     (and, for sampled data, the Nyquist bin) is dropped.
+
+    Parameters
+    ----------
+    t : array_like
+        Sample times [s], uniformly spaced, at least 64, shape (N,).
+    force : array_like
+        Actuator force [N], shape (N,).
+    position : array_like
+        The response: a position [m] (``actuator``, ``handle``) or a gauge force [N]
+        (``gauge``), shape (N,).
+    quantity : str, optional
+        ``"actuator"``, ``"handle"`` or ``"gauge"``.
+    boundary : str, optional
+        ``"free"`` or ``"clamped"``.
+    sample_time : float or None, optional
+        Controller sample period [s] of a measurement through the sampled controller (equal to
+        the time step); ``None``: continuous.
+    delay_samples : int, optional
+        Computation delay [samples] (with ``sample_time`` only).
+    nperseg : int or None, optional
+        Welch segment length [samples], 8 to N; ``None``: :func:`default_segment`.
+    noverlap : int or None, optional
+        Overlap of the segments [samples], ``0 <= noverlap < nperseg``; ``None``: half a segment.
+    window : str, optional
+        Window of :func:`scipy.signal.welch`.
+    source : str or None, optional
+        File the record came from (named in every error), or ``None``.
+
+    Returns
+    -------
+    Measurement
+        The H1 estimate at the positive frequencies [rad/s] below Nyquist where the force has
+        content, with coherence.
+
+    Raises
+    ------
+    MeasurementError
+        For records of different lengths, fewer than 64 samples, non-finite values, a time step
+        that is not uniform or differs from ``sample_time``, a bad ``nperseg`` or ``noverlap``,
+        a force with fewer than 8 usable bins, or an estimate that :func:`make_measurement`
+        refuses.
     """
     t = np.asarray(t, float).reshape(-1)
     f = np.asarray(force, float).reshape(-1)
