@@ -17,7 +17,7 @@ from collections.abc import Sequence
 from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QScrollArea, QTabWidget, QVBoxLayout, QWidget
 
-from analysis.study import IdentifyResult, RobustDesigns, bode_data, fit_curves, profile_with_fit
+from analysis.study import IdentifyResult, RobustDesigns, fit_curves, profile_with_fit
 
 from app.core import nodes_identify
 from app.core.compute_graph import ComputeGraph
@@ -25,7 +25,7 @@ from app.core.nodes_identify import FIT_NODE, NODES, ROBUST_NODE, fit_params
 from app.panels.identify_panel import IdentifyPanel
 from app.tabs.base import AnalysisTab
 from app.views.base import PlotView
-from app.views.bode_view import BodeView, OrderTable, ParameterTable, unit_of
+from app.views.bode_view import BodeView, OrderTable, ParameterTable
 from app.widgets.node_progress import NodeProgress
 from analysis.study.citations import ADAMS
 from analysis.study.quantities import format_number
@@ -145,8 +145,7 @@ class IdentifyTab(AnalysisTab):
         """Draw a fit: Bode plots, parameter and order tables, notes."""
         self.result = res
         fit = res.fit
-        self.bode.update_data(bode_data(list(zip(res.measurements, fit.responses))),
-                              unit_of(res.measurements[0].quantity))
+        self.bode.show_pairs(list(zip(res.measurements, fit.responses)))  # each quantity in its unit
         self.parameters.show_fit(fit)
         self.orders.show_orders(res.orders)
         notes = [f"Residual {format_number(fit.residual, 3)} (RMS of the weighted log-response), "
@@ -192,7 +191,7 @@ class IdentifyTab(AnalysisTab):
         if self.result is None:
             pairs = fit_curves(self.ctx.model.profile)  # the profile's embedded measurements, if any
             if pairs:
-                self.bode.update_data(bode_data(pairs), unit_of(pairs[0][0].quantity))
+                self.bode.show_pairs(pairs)
         self.refreshes += 1
         self.stale = False
 

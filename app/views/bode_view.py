@@ -2,22 +2,33 @@
 the coherence, over ω; plus the parameter table (with 95 % intervals) and the order table.
 
 The curves are :func:`analysis.study.bode_data` of ``(measurement, model response)`` pairs,
-several measurements joined by a gap, so every plot has one measured and one fitted curve.
+several measurements joined by a gap.  The magnitude has one measured and one fitted curve per
+measured quantity, each quantity in its own colour and named with its unit (an actuator's x/F is
+in m/N, a gauge's F_g/F in N/N: one axis unit for both would be wrong for one of them); phase and
+residual are dimensionless and keep one measured and one fitted curve.
 """
 
 from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QAbstractItemView, QGridLayout, QHeaderView, QTableWidget, QTableWidgetItem, QWidget
 
-from analysis.identify import ChainFit, OrderSelection
-from analysis.study import BodeData, format_number, parameter_rows
+from analysis.identify import ChainFit, Measurement, OrderSelection
+from analysis.study import BodeData, bode_data, format_number, parameter_rows
 
-from app.views.base import PlotView
+from app.views.base import PlotView, rich_label
 from app.views.curves_plot import CurvesPlot
 
-__all__ = ["BodeView", "ParameterTable", "OrderTable", "PARAMETER_COLUMNS", "ORDER_COLUMNS", "unit_of"]
+__all__ = ["BodeView", "ParameterTable", "OrderTable", "PARAMETER_COLUMNS", "ORDER_COLUMNS", "unit_of",
+           "MAGNITUDE_QUANTITIES", "magnitude_keys"]
+
+#: Each measured quantity's response symbol, unit and colour (a palette key; its pale variant
+#: draws the measurement, the full colour the fitted model).
+MAGNITUDE_QUANTITIES = {"actuator": ("x/F", "m/N", "a"), "handle": ("x_0/F", "m/N", "c"),
+                        "gauge": ("F_g/F", "N/N", "b")}
 
 PARAMETER_COLUMNS = ("parameter", "value", "std. error", "95 % low", "95 % high", "interval", "note")
 ORDER_COLUMNS = ("n", "AIC", "BIC", "residual", "")
@@ -30,9 +41,9 @@ class BodeView(QWidget):
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         w_axis = ("ω", "rad/s")
-        self.magnitude = CurvesPlot("Magnitude", w_axis, ("|H|", "m/N"), True, True)
-        self.magnitude.add_curve("measured", "measured", "muted", 3.0, export_name="|H| measured")
-        self.magnitude.add_curve("fitted", "fitted model", "a", 1.6, Qt.PenStyle.DashLine, export_name="|H| fitted")
+        self.magnitude = CurvesPlot("Magnitude", w_axis, ("|x/F|", "m/N"), True, True)
+        self.quantities: tuple[str, ...] = ()  # the measured quantities the magnitude plot shows
+        self._show_quantities(("actuator",))
         self.phase = CurvesPlot("Phase", w_axis, ("∠H", "°"), True, False)
         self.phase.add_curve("measured", "measured", "muted", 3.0, export_name="phase measured")
         self.phase.add_curve("fitted", "fitted model", "a", 1.6, Qt.PenStyle.DashLine, export_name="phase fitted")
@@ -58,12 +69,21 @@ class BodeView(QWidget):
     def plot_views(self) -> list[PlotView]:
         return [self.magnitude, self.phase, self.residual]
 
-    def update_data(self, data: BodeData, unit: str = "m/N") -> None:
-        """Draw ``data`` (every curve keeps a gap between measurements)."""
+    def update_data(self, data: BodeData, unit: str = "m/N",
+                    magnitudes: Mapping[str, BodeData] | None = None) -> None:
+        """Draw ``data`` (every curve keeps a gap between measurements).
+
+        ``magnitudes``: the magnitude data by measured quantity (:data:`MAGNITUDE_QUANTITIES`);
+        without it ``data`` is all one quantity, the gauge's if ``unit`` is N/N.
+        """
         self.data = data
-        self.magnitude.set_axis_labels("ω", "rad/s", "|H|", unit)
-        self.magnitude.set_curve("measured", data.w, data.measured_mag, gaps=True)
-        self.magnitude.set_curve("fitted", data.w, data.model_mag, gaps=True)
+        if magnitudes is None:
+            magnitudes = {"gauge" if unit == "N/N" else "actuator": data}
+        self._show_quantities(tuple(magnitudes))
+        for q, part in magnitudes.items():
+            measured, fitted = magnitude_keys(q)
+            self.magnitude.set_curve(measured, part.w, part.measured_mag, gaps=True)
+            self.magnitude.set_curve(fitted, part.w, part.model_mag, gaps=True)
         self.phase.set_curve("measured", data.w, data.measured_phase, gaps=True)
         self.phase.set_curve("fitted", data.w, data.model_phase, gaps=True)
         self.residual.set_curve("residual", data.w, data.residual, gaps=True)
@@ -71,6 +91,42 @@ class BodeView(QWidget):
         self.residual.set_curve("coherence", data.w[: coh.size], coh, gaps=True)
         for v in self.plot_views():
             v.bump()
+
+    def show_pairs(self, pairs: Sequence[tuple[Measurement, np.ndarray]]) -> None:
+        """Draw ``(measurement, model response)`` pairs: each measured quantity's magnitude apart."""
+        order = [q for q in MAGNITUDE_QUANTITIES if any(m.quantity == q for m, _ in pairs)]
+        by_quantity = {q: bode_data([p for p in pairs if p[0].quantity == q]) for q in order}
+        self.update_data(bode_data(pairs), unit_of(pairs[0][0].quantity) if pairs else "m/N", by_quantity)
+
+    def _show_quantities(self, quantities: tuple[str, ...]) -> None:
+        """One measured and one fitted curve per quantity, in the quantity's colour; the y label
+        names each quantity's symbol and the units (none of them wrong for any curve)."""
+        if quantities == self.quantities:
+            return
+        mag = self.magnitude
+        for q in self.quantities:
+            if q not in quantities:
+                for key in magnitude_keys(q):
+                    mag.remove_curve(key)
+        for q in quantities:
+            if q in self.quantities:
+                continue
+            symbol, unit, color = MAGNITUDE_QUANTITIES[q]
+            measured, fitted = magnitude_keys(q)
+            name = f"{q} {rich_label(symbol)} [{unit}]"
+            mag.add_curve(measured, f"{name} measured", f"{color}_pale", 3.0, export_name=f"|{symbol}| {q} measured")
+            mag.add_curve(fitted, f"{name} fitted", color, 1.6, Qt.PenStyle.DashLine,
+                          export_name=f"|{symbol}| {q} fitted")
+        self.quantities = quantities
+        units = list(dict.fromkeys(MAGNITUDE_QUANTITIES[q][1] for q in quantities))
+        mag.set_axis_labels("ω", "rad/s", ", ".join(f"|{MAGNITUDE_QUANTITIES[q][0]}|" for q in quantities),
+                            ", ".join(units))
+
+
+def magnitude_keys(quantity: str) -> tuple[str, str]:
+    """The magnitude plot's curve keys (measured, fitted) of a measured quantity; the actuator's
+    are ``"measured"`` and ``"fitted"``, as before there was more than one quantity."""
+    return ("measured", "fitted") if quantity == "actuator" else (f"measured {quantity}", f"fitted {quantity}")
 
 
 def _item(text: str, tip: str = "") -> QTableWidgetItem:

@@ -66,6 +66,16 @@ class CurvesPlot(PlotView):
         self._export_names[key] = export_name or key
         return item
 
+    def remove_curve(self, key: str) -> None:
+        """Take a curve (and its legend entry) out of the plot; unknown keys are ignored."""
+        item = self.items.pop(key, None)
+        if item is None:
+            return
+        self.legend.removeItem(item)
+        self.plot.removeItem(item)
+        for store in (self._styles, self._data, self._raw, self._export_names, self.hidden_points):
+            store.pop(key, None)
+
     def add_marker(self, key: str, name: str, color: str = "mark", symbol: str = "o", size: float = 10.0,
                    export_name: str | None = None) -> pg.ScatterPlotItem:
         """One point, moved on every step of a drag: a bare scatter item in view coordinates (a

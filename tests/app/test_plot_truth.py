@@ -163,3 +163,44 @@ def test_zwidth_region_shades_the_stable_walls_down_to_the_axis(qtbot):
     assert _fill_bottom(view) <= -2
     top = view.fill.path().boundingRect().bottom()
     assert top == pytest.approx(np.log10(1e4 * 101), abs=1e-6)  # up to the exact curve, no further
+
+
+def _legend_texts(view) -> list[str]:
+    return [label.text for _sample, label in view.legend.items]
+
+
+def test_identify_magnitude_names_each_quantity_with_its_unit(qtbot, hbfd_profile):
+    """Actuator (m/N) and gauge (N/N) responses: each its own colour and legend entries, and an
+    axis label that gives no unit wrong (it said "|H| [m/N]" for both)."""
+    from analysis.identify import device_response, make_measurement
+    from app.views.bode_view import BodeView
+
+    dev = hbfd_profile.device
+    w = np.logspace(0, 3, 60)
+    pairs = []
+    for q in ("actuator", "gauge"):
+        h = device_response(dev, w, q, "free", None, 0)
+        pairs.append((make_measurement(w, h, q, "free"), h * 1.01))
+    view = BodeView()
+    qtbot.addWidget(view)
+    view.show_pairs(pairs)
+    mag = view.magnitude
+    texts = _legend_texts(mag)
+    assert texts == ["actuator x/F [m/N] measured", "actuator x/F [m/N] fitted",
+                     "gauge F<sub>g</sub>/F [N/N] measured", "gauge F<sub>g</sub>/F [N/N] fitted"]
+    label = mag.plot.getAxis("left").labelText
+    assert "m/N" in label and "N/N" in label and "|H|" not in label
+    assert "|x/F|" in label and "|F<sub>g</sub>/F|" in label
+    colours = {k: mag.items[k].opts["pen"].color().getRgb()[:3] for k in mag.items}
+    assert colours["measured"] == colours["fitted"] != colours["measured gauge"] == colours["fitted gauge"]
+    # each curve holds its own quantity's numbers
+    np.testing.assert_allclose(mag.data("measured gauge")[1], np.abs(pairs[1][0].response))
+    np.testing.assert_allclose(mag.data("fitted")[1], np.abs(pairs[0][1]))
+    names = [s.name for s in mag.export_series()]
+    assert "|F_g/F| gauge measured" in names and "|x/F| actuator fitted" in names
+    # one quantity again: its unit alone, and no gauge entries left over
+    view.show_pairs(pairs[1:])
+    assert _legend_texts(mag) == ["gauge F<sub>g</sub>/F [N/N] measured", "gauge F<sub>g</sub>/F [N/N] fitted"]
+    label = mag.plot.getAxis("left").labelText
+    assert "N/N" in label and "m/N" not in label
+    assert mag.data("measured")[0].size == 0
