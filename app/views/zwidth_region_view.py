@@ -15,7 +15,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QWidget
 
 from analysis.sampled import MeasuredTrials, TrialScore, ZWidthRegion
-from analysis.study.quantities import format_number, rich_numbers
+from analysis.study.quantities import format_number, superscript_numbers
 
 from app.views.pickable import PickablePlotView
 from app.views.base import Series, clean_xy, mark_design_point
@@ -65,7 +65,8 @@ class ZWidthRegionView(PickablePlotView):
         self.plot_widget.setMinimumSize(260, 200)
 
     def set_busy(self, busy: bool, text: str = "") -> None:
-        head = f"<b>{self.title}</b>" + (f"  {rich_numbers(self.summary)}" if self.summary else "")
+        # exponents as Unicode superscripts: a <sup> in the one-line title is cut at its top (×10⁷ read ×10')
+        head = f"<b>{self.title}</b>" + (f"  {superscript_numbers(self.summary)}" if self.summary else "")
         self.header.setText(head + (f"  <i>({text or 'updating…'})</i>" if busy else ""))
 
     def update_region(self, region: ZWidthRegion | None, trials: MeasuredTrials | None = None,

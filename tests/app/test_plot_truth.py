@@ -143,16 +143,11 @@ def test_design_chart_shades_the_feasible_gains_down_to_the_axis(chart):
 
 
 def test_zwidth_region_shades_the_stable_walls_down_to_the_axis(qtbot):
-    from analysis.sampled import VelocityFilter, ZWidthRegion
     from app.views.zwidth_region_view import ZWidthRegionView
 
-    b = np.geomspace(0.1, 100.0, 60)
-    region = ZWidthRegion(b=b, k_max=1e4 * (1 + b), k_passive=5e3 * np.ones_like(b),
-                          k_twoport=4e4 * np.ones_like(b), area_linear=1.0, area_log=1.0, delay_samples=0,
-                          velocity_filter=VelocityFilter("backward"), k_floor=1.0, k_ceiling=1e9)
     view = ZWidthRegionView()
     qtbot.addWidget(view)
-    view.update_region(region)
+    view.update_region(_synthetic_region())
     view.resize(700, 420)
     view.show()
     qtbot.waitExposed(view)
@@ -204,3 +199,27 @@ def test_identify_magnitude_names_each_quantity_with_its_unit(qtbot, hbfd_profil
     label = mag.plot.getAxis("left").labelText
     assert "N/N" in label and "m/N" not in label
     assert mag.data("measured")[0].size == 0
+
+
+def _synthetic_region(area_linear: float = 1.234e7, area_log: float = 3.2e6):
+    from analysis.sampled import VelocityFilter, ZWidthRegion
+
+    b = np.geomspace(0.1, 100.0, 60)
+    return ZWidthRegion(b=b, k_max=1e4 * (1 + b), k_passive=5e3 * np.ones_like(b),
+                        k_twoport=4e4 * np.ones_like(b), area_linear=area_linear, area_log=area_log,
+                        delay_samples=0, velocity_filter=VelocityFilter("backward"), k_floor=1.0, k_ceiling=1e9)
+
+
+def test_zwidth_title_exponents_are_glyphs_not_clipped_sup(qtbot):
+    """The one-line title clipped a <sup> at its top (×10⁷ read ×10'): the exponents are Unicode
+    superscripts, which sit inside the line."""
+    from app.views.zwidth_region_view import ZWidthRegionView
+
+    view = ZWidthRegionView()
+    qtbot.addWidget(view)
+    view.update_region(_synthetic_region())
+    text = view.header.text()
+    assert "1.234×10⁷" in text and "3.2×10⁶" in text
+    assert "<sup>" not in text
+    view.set_busy(True)
+    assert "10⁷" in view.header.text() and "updating" in view.header.text()
