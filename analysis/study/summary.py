@@ -150,7 +150,7 @@ def format_summary(d: dict[str, Any]) -> str:
     Returns
     -------
     str
-        The text ``zwidth analyze`` prints, lines separated by ``"\n"``.
+        The text ``zwidth analyze`` prints, one line per entry.
 
     Raises
     ------
