@@ -9,6 +9,8 @@ never written as an empty file.
 from __future__ import annotations
 
 import os
+import re
+import unicodedata
 from typing import Any
 
 from PySide6.QtCore import QEventLoop, Qt, QTimer
@@ -17,16 +19,49 @@ from PySide6.QtWidgets import QFileDialog, QInputDialog, QMainWindow, QMessageBo
 from app.core.settings import Settings
 from app.views import export
 from app.views.base import PlotView
+from app.window.menus import plain_title, tab_export_entries
 
-__all__ = ["export_view", "default_export_name", "bring_up_to_date", "has_content"]
+__all__ = ["export_view", "default_export_name", "file_stem", "bring_up_to_date", "has_content"]
 
 _WRITERS = {"png": None, "svg": export.export_svg, "csv": export.export_csv}
 
 
-def default_export_name(view: PlotView, fmt: str) -> str:
-    """``stability_plot.png`` from the view's title (the part before a colon)."""
-    base = view.title.split(":")[0].strip().lower().replace(" ", "_").replace("(", "").replace(")", "")
-    return f"{base}.{fmt}"
+#: Letters and signs of plot titles that NFKD leaves non-ASCII, spelled for a file name.
+_ASCII = {"α": "alpha", "β": "beta", "γ": "gamma", "δ": "delta", "Δ": "Delta", "ζ": "zeta", "η": "eta",
+          "θ": "theta", "λ": "lambda", "μ": "mu", "π": "pi", "ρ": "rho", "σ": "sigma", "τ": "tau",
+          "φ": "phi", "ω": "omega", "Ω": "Omega", "∞": "inf", "‖": "", "–": "-", "—": "-", "−": "-",
+          "×": "x", "·": "_"}
+#: Names Windows reserves whatever the extension.
+_RESERVED = {"CON", "PRN", "AUX", "NUL", *(f"COM{i}" for i in range(10)), *(f"LPT{i}" for i in range(10))}
+
+
+def file_stem(title: str, max_length: int = 120) -> str:
+    """A title (rich text allowed) as a file stem valid on Linux, Windows and macOS.
+
+    ``J(B<sub>c</sub>), eq. 11 (Fig. 8)`` -> ``j_b_c_eq_11_fig_8``: tags stripped and entities
+    decoded (:func:`app.window.menus.plain_title`), Greek letters spelled, sub- and superscripts
+    as plain digits (NFKD), lower case (unique also on case-insensitive file systems), only
+    ``[a-z0-9._-]`` kept, runs of separators one underscore, never a leading or trailing dot.
+    """
+    text = "".join(_ASCII.get(ch, ch) for ch in plain_title(title))
+    text = unicodedata.normalize("NFKD", text).encode("ascii", "ignore").decode("ascii").lower()
+    text = re.sub(r"(?<![0-9])\.|\.(?![0-9])", "_", text)  # a dot only inside a number
+    text = re.sub(r"[^a-z0-9._-]+", "_", text)
+    text = re.sub(r"_*-_*", "-", re.sub(r"_+", "_", text)).strip("._-")[:max_length].strip("._-")
+    if not text:
+        return "plot"
+    return text + "_" if text.split(".")[0].upper() in _RESERVED else text
+
+
+def default_export_name(view: PlotView, fmt: str, window: Any = None) -> str:
+    """``stability_and_z-width-impedance_range_z-width.png``: the tab's and the plot's titles as
+    one safe file stem (:func:`file_stem`), so no two plots of the window share a default name
+    (two plots of one tab with one title are told apart as the export menu does)."""
+    for tab in getattr(window, "analysis_tabs", []):
+        if tab.is_built() and view in tab.views():
+            name = next(n for n, v in tab_export_entries(tab) if v is view)
+            return f"{file_stem(tab.title)}-{file_stem(name)}.{fmt}"
+    return f"{file_stem(view.title)}.{fmt}"
 
 
 def has_content(view: PlotView) -> bool:
@@ -110,7 +145,7 @@ def export_view(window: QMainWindow, settings: Settings, view: PlotView, fmt: st
         QMessageBox.warning(window, "Nothing exported", f"{view.title.split(':')[0]} was not exported: {reason}.")
         return False
     if path is None:
-        start = os.path.join(settings.last_directory(), default_export_name(view, fmt))
+        start = os.path.join(settings.last_directory(), default_export_name(view, fmt, window))
         path, _ = QFileDialog.getSaveFileName(window, f"Export {fmt.upper()}", start, export.FORMATS[fmt])
         if not path:
             return False

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import os
 
 import numpy as np
 import pytest
@@ -143,3 +144,44 @@ def test_empty_design_chart_gui_export_carries_a_note(eom_win, tmp_path, fmt):
     if fmt == "csv":
         notes, header, _rows = read_csv(path)
         assert notes == ["# note: " + view.empty_message]
+
+
+def test_file_stem_is_plain_ascii():
+    from app.window.exports import file_stem
+
+    assert file_stem("J(B<sub>c</sub>), eq. 11 (Fig. 8)") == "j_b_c_eq_11_fig_8"
+    assert file_stem("Disturbance to velocity |v/d|") == "disturbance_to_velocity_v_d"
+    assert file_stem("‖L‖<sub>∞</sub>(B<sub>c</sub>), eq. 16–17") == "l_inf_b_c_eq_16-17"
+    assert file_stem("spectral radius ρ at 0.5 ms, m₁ x²") == "spectral_radius_rho_at_0.5_ms_m1_x2"
+    assert file_stem("a &lt; b: c\\d*?") == "a_b_c_d"
+    assert file_stem("<b></b> ...") == "plot"
+    assert file_stem("Con") == "con_"  # a name Windows reserves gets a suffix
+
+
+def test_default_export_names_are_valid_everywhere_and_unique(win, tmp_path, monkeypatch):
+    import re
+
+    from PySide6.QtWidgets import QFileDialog
+
+    from app.window.exports import default_export_name
+
+    names = []
+    for tab in win.analysis_tabs:
+        for view in tab.plot_views():
+            name = default_export_name(view, "png", win)
+            stem = name[:-len(".png")]
+            assert name.endswith(".png") and re.fullmatch(r"[a-z0-9][a-z0-9._-]*[a-z0-9]", stem), name
+            assert "__" not in stem and ".." not in stem and len(name) < 200, name
+            assert stem.split(".")[0].upper() not in {"CON", "PRN", "AUX", "NUL"}, name
+            names.append(name)
+    assert len(names) == len(win.plot_views()) >= 20
+    assert len({n.lower() for n in names}) == len(names), sorted(names)  # unique, even ignoring case
+    wall = {default_export_name(v, "png", win) for v in win.plot_views() if v.title.startswith("Step")}
+    assert len(wall) == 2
+    # the file dialog is offered that name, in the last directory (accepting it would write there)
+    asked = []
+    monkeypatch.setattr(QFileDialog, "getSaveFileName", lambda *a, **k: asked.append(a[2]) or ("", ""))
+    view = next(v for v in win.plot_views() if "|v/d|" in v.title)
+    assert not win.export_view(view, "csv")
+    assert asked and os.path.basename(asked[0]) == default_export_name(view, "csv", win)
+    assert "|" not in asked[0] and "<" not in asked[0]
