@@ -9,6 +9,7 @@ editor shows); the message also gives the 1-based data row (line - 1).
 from __future__ import annotations
 
 from analysis.csvtable import CsvError
+from analysis.progress import OperationCancelled
 
 __all__ = ["FitCancelled", "MeasurementError", "ParameterKeyError"]
 
@@ -36,6 +37,8 @@ class ParameterKeyError(ValueError):
         super().__init__(f"parameter key {key!r} is invalid: expected {expected}")
 
 
-class FitCancelled(Exception):
-    """A fit stopped because its ``cancelled()`` callback returned True (checked before every
-    model evaluation, so a worker's Cancel takes effect within one evaluation)."""
+#: A fit stopped because its ``cancelled()`` hook returned true (checked before every model
+#: evaluation, so a worker's Cancel takes effect within one evaluation).  Deprecated alias of
+#: :class:`analysis.progress.OperationCancelled` (the one cancel protocol, issue 21), kept for one
+#: release: ``except FitCancelled`` catches every cancel.
+FitCancelled = OperationCancelled

@@ -42,7 +42,7 @@ with the handle free shows the mode and fixes it.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -56,6 +56,7 @@ from analysis.identify.problem import FitProblem, solve
 from analysis.identify.results import ChainFit, OrderSelection
 from analysis.identify.start import other_peaks, start_chains, visible_spectrum
 from analysis.identify.uncertainty import build_fit
+from analysis.progress import Cancelled
 
 __all__ = ["fit_chain", "order_selection"]
 
@@ -85,7 +86,7 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
               fixed: Mapping[str, float] | None = None, *, sensor_element: int = 0,
               sample_time: float | None = None, band_min: float = 1.0, starts: int = 4, seed: int = 0,
               max_nfev: int = 200, intervals: str = "auto",
-              cancelled: Callable[[], bool] | None = None) -> ChainFit:
+              cancelled: Cancelled | None = None) -> ChainFit:
     """Fit an ``n_masses`` chain to ``measurements`` together (module doc).
 
     ``ground_dampings`` selects the masses with a damper to ground (default ``(n - 1,)``, the
@@ -97,7 +98,7 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
     Jacobian only, fastest) or ``"profile"`` (every free parameter profiled); see
     :func:`analysis.identify.uncertainty.profile_selection`.  ``cancelled()`` is asked before
     every model evaluation; once it returns True the fit raises
-    :class:`~analysis.identify.errors.FitCancelled`.
+    :class:`~analysis.progress.OperationCancelled` (``FitCancelled``).
     """
     fixed = dict(fixed or {})
     ground = tuple(sorted(set((n_masses - 1,) if ground_dampings is None else (int(g) for g in ground_dampings))))
@@ -201,7 +202,7 @@ def _rescaled(chain: ChainParameters, row: int, fixed: Mapping[str, float]) -> N
 
 
 def _hidden_hints(measurements: Sequence[Measurement], n: int, seed: int,
-                  cancelled: Callable[[], bool] | None = None) -> np.ndarray | None:
+                  cancelled: Cancelled | None = None) -> np.ndarray | None:
     """Frequencies of resonance pairs an ``n``-mass chain needs but the driving point does not show.
 
     First the peaks of the other measurements away from the visible resonances

@@ -21,16 +21,15 @@ of ``p + 1`` chains rather than ``p + 1`` Python-level ones.  :meth:`FitProblem.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from scipy import optimize
 
-from analysis.identify.errors import FitCancelled
 from analysis.identify.measurement import Measurement
 from analysis.identify.model import response
 from analysis.identify.params import ChainParameters, physical_range
+from analysis.progress import Cancelled, check_cancelled
 
 __all__ = ["FitProblem", "log_bounds", "solve", "solve_held"]
 
@@ -47,14 +46,14 @@ class FitProblem:
     ``base`` holds every parameter (free ones at any value, fixed ones at theirs);
     ``keys`` are the free parameters, ``theta = log(values of keys)``.  ``cancelled`` (optional)
     is asked before every model evaluation; when it returns True the evaluation raises
-    :class:`~analysis.identify.errors.FitCancelled`.
+    :class:`~analysis.progress.OperationCancelled` (``FitCancelled``).
     """
 
     measurements: tuple[Measurement, ...]
     keys: tuple[str, ...]
     base: ChainParameters
     sensor_element: int = 0
-    cancelled: Callable[[], bool] | None = None
+    cancelled: Cancelled | None = None
 
     def sub(self, keys: tuple[str, ...], base: ChainParameters) -> FitProblem:
         """The same measurements, sensor and cancel hook with other free ``keys`` and ``base``."""
@@ -75,8 +74,7 @@ class FitProblem:
 
     def residual_rows(self, thetas: np.ndarray) -> np.ndarray:
         """Real residual vectors (P, R) of ``P`` parameter rows (module doc)."""
-        if self.cancelled is not None and self.cancelled():
-            raise FitCancelled("the fit was cancelled")
+        check_cancelled(self.cancelled, "the fit was cancelled")
         thetas = np.atleast_2d(np.asarray(thetas, float))
         bad = ~np.all(np.isfinite(thetas) & (np.abs(thetas) < _THETA_MAX), axis=1)
         thetas = np.where(bad[:, None], 0.0, thetas)  # evaluated harmlessly, then penalized

@@ -33,6 +33,7 @@ from analysis.chain.limits import MAX_MAP_POINTS, check_count
 from analysis.chain.velocity_filter import VelocityFilter
 from analysis.checks import nonnegative, positive
 from analysis.errors import ValidationError
+from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.sampled.controllers import display_loop
 from analysis.sampled.loop import (
     STABILITY_TOLERANCE,
@@ -295,22 +296,21 @@ def critical_stiffness(device: Device, bc: float, delay_samples: int = 0, *, env
     return _first_crossing(f, k_range[0], k_range[1], increasing=True)
 
 
-def _each(values: np.ndarray, func: Callable[[float], float], progress: Callable[[int, int], None] | None,
-          cancelled: Callable[[], bool] | None) -> np.ndarray | None:
-    """``func`` at each value, reporting ``progress(done, total)``; ``None`` once ``cancelled()``."""
+def _each(values: np.ndarray, func: Callable[[float], float], progress: Progress | None,
+          cancelled: Cancelled | None) -> np.ndarray:
+    """``func`` at each value, reporting ``progress(done, total)``; raises OperationCancelled once ``cancelled()``."""
     out = np.empty(values.size)
     for i, v in enumerate(values):
-        if cancelled is not None and cancelled():
-            return None
+        check_cancelled(cancelled)
         out[i] = func(float(v))
-        if progress is not None:
-            progress(i + 1, values.size)
+        report_progress(progress, i + 1, values.size)
     return out
 
 
+@none_if_cancelled
 def critical_stiffness_chart(device: Device, bc_values, delay_samples: int = 0, *,
-                             progress: Callable[[int, int], None] | None = None,
-                             cancelled: Callable[[], bool] | None = None, **kwargs) -> CriticalChart | None:
+                             progress: Progress | None = None,
+                             cancelled: Cancelled | None = None, **kwargs) -> CriticalChart | None:
     """:func:`critical_stiffness` over a list of b_c (overlay for the two-port design chart).
 
     ``progress(done, total)`` after each b_c; ``None`` when ``cancelled()`` turns true.
@@ -338,7 +338,7 @@ def critical_stiffness_chart(device: Device, bc_values, delay_samples: int = 0, 
     """
     bcs = np.asarray(bc_values, float).reshape(-1)
     kcs = _each(bcs, lambda b: critical_stiffness(device, b, delay_samples, **kwargs), progress, cancelled)
-    return None if kcs is None else CriticalChart(bc=bcs, kc=kcs, delay_samples=int(delay_samples))
+    return CriticalChart(bc=bcs, kc=kcs, delay_samples=int(delay_samples))
 
 
 def critical_mass(device: Device, bc: float, pd: tuple[float, float] = (50e3, 100.0), delay_samples: int = 0, *,
@@ -386,9 +386,10 @@ def critical_mass(device: Device, bc: float, pd: tuple[float, float] = (50e3, 10
     return _first_crossing(f, m_range[0], m_range[1], increasing=False)
 
 
+@none_if_cancelled
 def critical_mass_chart(device: Device, bc_values, pd: tuple[float, float] = (50e3, 100.0), delay_samples: int = 0,
-                        *, progress: Callable[[int, int], None] | None = None,
-                        cancelled: Callable[[], bool] | None = None, **kwargs) -> CriticalMassChart | None:
+                        *, progress: Progress | None = None,
+                        cancelled: Cancelled | None = None, **kwargs) -> CriticalMassChart | None:
     """:func:`critical_mass` over a list of b_c (overlay for the admittance design chart).
 
     ``progress(done, total)`` after each b_c; ``None`` when ``cancelled()`` turns true.
@@ -418,7 +419,7 @@ def critical_mass_chart(device: Device, bc_values, pd: tuple[float, float] = (50
     """
     bcs = np.asarray(bc_values, float).reshape(-1)
     mcs = _each(bcs, lambda b: critical_mass(device, b, pd, delay_samples, **kwargs), progress, cancelled)
-    return None if mcs is None else CriticalMassChart(bc=bcs, mc=mcs, delay_samples=int(delay_samples))
+    return CriticalMassChart(bc=bcs, mc=mcs, delay_samples=int(delay_samples))
 
 
 #: Parameters a stability map can sweep, and where they act.

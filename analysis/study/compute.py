@@ -3,7 +3,7 @@ the exact sampled-data limits, the stability map and the scenario simulation.
 
 The GUI's compute graph, ``zwidth`` and the report all call these functions; none of them
 has a copy.  Long computations take ``progress(done, total)`` and ``cancelled() -> bool``
-and return ``None`` once cancelled.  Each call builds its own analysis objects, so a call on a
+and return ``None`` once cancelled (the one protocol of :mod:`analysis.progress`).  Each call builds its own analysis objects, so a call on a
 worker thread never shares a cache with the GUI thread.
 """
 
@@ -16,6 +16,7 @@ import numpy as np
 
 from analysis.chain.limits import MAX_CHART_POINTS, MAX_MAP_POINTS, check_count
 from analysis.profiles.model import Profile
+from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.sampled import (
     HANDS_OFF,
     RIGID_GRASP,
@@ -49,11 +50,9 @@ from analysis.twoport.admittance import AdmittanceDisplay
 from analysis.twoport.display_base import DisplayBase
 from analysis.twoport.impedance import ImpedanceDisplay
 from analysis.twoport.results import (
-    Cancelled,
     DampingInterval,
     MassChart,
     MassDesign,
-    Progress,
     StabilityResult,
     StiffnessChart,
     StiffnessDesign,
@@ -348,6 +347,7 @@ def map_arguments(request: MapRequest | Profile, params: dict[str, Any] | None =
                 implementation_delay=lp.implementation_delay, velocity_filter=lp.velocity_filter)
 
 
+@none_if_cancelled
 def stability_map_result(request: MapRequest | Profile, params: dict[str, Any] | None = None, *,
                          progress: Progress | None = None, cancelled: Cancelled | None = None) -> StabilityMap | None:
     """The spectral radius of the exact sampled loop over two parameters.
@@ -378,11 +378,9 @@ def stability_map_result(request: MapRequest | Profile, params: dict[str, Any] |
     blocks = np.array_split(np.arange(yv.size), min(8, yv.size))
     rows, x_name, x = [], args["x"][0], args["x"][1]
     for i, idx in enumerate(blocks):
-        if cancelled is not None and cancelled():
-            return None
+        check_cancelled(cancelled)
         rows.append(sampled_stability_map(req.loop.device, y=(yn, yv[idx]), **args).spectral_radius)
-        if progress is not None:
-            progress(i + 1, len(blocks))
+        report_progress(progress, i + 1, len(blocks))
     return StabilityMap(x_name=x_name, x=x, y_name=yn, y=yv, spectral_radius=np.vstack(rows))
 
 
@@ -442,6 +440,7 @@ def design_radius(request: PointRequest | Profile, x_name: str | None = None, y_
     return float(sampled_stability_map(req.loop.device, **args).spectral_radius[0, 0])
 
 
+@none_if_cancelled
 def simulation(request: SimulationRequest | Profile, *, progress: Progress | None = None,
                cancelled: Cancelled | None = None) -> SimulationResult | None:
     """One run of the nonlinear simulator on the scenario.
@@ -463,16 +462,14 @@ def simulation(request: SimulationRequest | Profile, *, progress: Progress | Non
         The simulated traces, or ``None`` once cancelled.
     """
     req = SimulationRequest.of(request) if isinstance(request, Profile) else request
-    if progress is not None:
-        progress(0, 1)
-    if cancelled is not None and cancelled():
-        return None
+    report_progress(progress, 0, 1)
+    check_cancelled(cancelled)
     lp, sec = req.loop, req.section
     res = simulate(lp.device, sec.scenario, display=lp.display, coupling=lp.coupling, pd=lp.pd, options=sec.options,
                    velocity_filter=lp.velocity_filter)
-    if progress is not None:
-        progress(1, 1)
-    return None if cancelled is not None and cancelled() else res
+    report_progress(progress, 1, 1)
+    check_cancelled(cancelled)
+    return res
 
 
 #: deprecated alias of :func:`stability_map_result` (one release): :func:`analysis.sampled.stability_map`

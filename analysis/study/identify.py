@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,7 +27,6 @@ import numpy as np
 from analysis.chain.device import Device
 from analysis.identify import (
     ChainFit,
-    FitCancelled,
     Measurement,
     OrderSelection,
     RobustDamping,
@@ -42,14 +41,12 @@ from analysis.identify import (
 )
 from analysis.profiles import Profile
 from analysis.profiles.identification import IdentificationSection, MeasurementData
+from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.study.displays import display_kind
 from analysis.study.quantities import format_number
 
 __all__ = ["BodeData", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "identify_chain", "load_measurements", "parameter_rows",
            "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements", "RobustRequest"]
-
-Progress = Callable[[int, int], None] | None
-Cancelled = Callable[[], bool] | None
 
 
 @dataclass(frozen=True, eq=False)
@@ -154,9 +151,11 @@ def _fit_or_error(measurements: Sequence[Measurement], n: int, fixed: Mapping[st
         return None, str(exc)
 
 
+@none_if_cancelled
 def identify_chain(measurements: Sequence[Measurement], n_masses: int, fixed: Mapping[str, float] | None = None,
              ground_dampings: Sequence[int] | None = None, *, max_masses: int | None = None,
-             progress: Progress = None, cancelled: Cancelled = None, **fit_kwargs) -> IdentifyResult | None:
+             progress: Progress | None = None, cancelled: Cancelled | None = None,
+             **fit_kwargs) -> IdentifyResult | None:
     """Fit ``n_masses`` (raises ValueError for unusable input) and, when ``max_masses`` is given,
     the orders ``1..max_masses`` for the order table; ``None`` when cancelled (``cancelled()`` is
     asked before every model evaluation of every fit, so Cancel stops a long fit at once).
@@ -195,23 +194,15 @@ def identify_chain(measurements: Sequence[Measurement], n_masses: int, fixed: Ma
     orders = list(range(1, int(max_masses) + 1)) if max_masses else []
     total = 1 + len([n for n in orders if n != n_masses])
     fit_kwargs = {**fit_kwargs, "cancelled": cancelled}
-    try:
-        fit = fit_chain(measurements, int(n_masses), ground_dampings, fixed, **fit_kwargs)
-    except FitCancelled:
-        return None
-    if progress:
-        progress(1, total)
+    fit = fit_chain(measurements, int(n_masses), ground_dampings, fixed, **fit_kwargs)
+    report_progress(progress, 1, total)
     rows: list[tuple[ChainFit | None, str | None]] = []
     for n in orders:
-        if cancelled and cancelled():
-            return None
-        try:
-            rows.append((fit, None) if n == n_masses else _fit_or_error(measurements, n, fixed, ground_dampings,
-                                                                         fit_kwargs))
-        except FitCancelled:
-            return None
-        if progress and n != n_masses:
-            progress(1 + len(rows), total)
+        check_cancelled(cancelled)
+        rows.append((fit, None) if n == n_masses else _fit_or_error(measurements, n, fixed, ground_dampings,
+                                                                     fit_kwargs))
+        if n != n_masses:
+            report_progress(progress, 1 + len(rows), total)
     table = _order_table(orders, rows) if orders else None
     return IdentifyResult(fit, table, tuple(measurements))
 
@@ -444,8 +435,9 @@ class RobustRequest:
                    float(profile.bc_adm))
 
 
-def robust_designs(request: RobustRequest | Profile, *, seed: int = 0, progress: Progress = None,
-                   cancelled: Cancelled = None) -> RobustDesigns | None:
+@none_if_cancelled
+def robust_designs(request: RobustRequest | Profile, *, seed: int = 0, progress: Progress | None = None,
+                   cancelled: Cancelled | None = None) -> RobustDesigns | None:
     """The robust design of the display over the identification intervals.
 
     Parameters
@@ -465,8 +457,9 @@ def robust_designs(request: RobustRequest | Profile, *, seed: int = 0, progress:
         The robust design, or ``None`` without intervals or when cancelled before the search.
     """
     req = RobustRequest.of(request) if isinstance(request, Profile) else request
-    if not req.intervals or (cancelled and cancelled()):
+    if not req.intervals:
         return None
+    check_cancelled(cancelled)
     intervals = dict(req.intervals)
     impedance = display_kind(req.display).is_impedance
     loose = open_intervals(intervals, req.device.n)
@@ -479,8 +472,7 @@ def robust_designs(request: RobustRequest | Profile, *, seed: int = 0, progress:
         rd = robust_feasible_damping(req.device, *req.design, intervals, seed=seed)
         ok = rd.low is not None and rd.low <= req.coupling <= rd.high
         out = RobustDesigns(False, intervals, None, rd, req.coupling, ok)
-    if progress:
-        progress(1, 1)
+    report_progress(progress, 1, 1)
     return out
 
 

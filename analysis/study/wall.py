@@ -17,6 +17,7 @@ import numpy as np
 from analysis.chain.device import Device
 from analysis.errors import ValidationError
 from analysis.profiles.model import Profile
+from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.study.quantities import format_number
 from analysis.transparency.design import WallDesign
 from analysis.transparency.five_bar import five_bar_preset
@@ -36,7 +37,6 @@ from analysis.transparency.settings import (
     TradeoffCurves,
     WallSettings,
 )
-from analysis.twoport.results import Cancelled, Progress
 
 __all__ = ["DEFAULT_BC", "PAPER_MASS", "mass_scale", "derived_wall_settings", "default_bc", "wall_device_label",
            "observer_device_label", "OBSERVER_W", "WallTradeoff", "WallPoint", "WallAdmittances", "wall_settings", "wall_design",
@@ -316,6 +316,7 @@ def admittance_grid(st: WallSettings, points: int = 600) -> np.ndarray:
     return np.geomspace(min(1.0, hi / 100.0), hi, points)
 
 
+@none_if_cancelled
 def wall_tradeoff(request: WallRequest | Profile, *, progress: Progress | None = None,
                   cancelled: Cancelled | None = None) -> WallTradeoff | None:
     """J(B_c) and ‖L‖∞(B_c) (Fig. 8) and the robust optimum; ``None`` once cancelled.
@@ -335,16 +336,12 @@ def wall_tradeoff(request: WallRequest | Profile, *, progress: Progress | None =
         The curves and the optimum, or ``None`` once cancelled.
     """
     design = wall_design(request)  # its own object: never shared across threads
-    if progress is not None:
-        progress(0, 2)
+    report_progress(progress, 0, 2)
     curves = design.tradeoff()
-    if cancelled is not None and cancelled():
-        return None
-    if progress is not None:
-        progress(1, 2)
+    check_cancelled(cancelled)
+    report_progress(progress, 1, 2)
     optimum = design.optimal_damping()
-    if progress is not None:
-        progress(2, 2)
+    report_progress(progress, 2, 2)
     return WallTradeoff(curves, optimum, design.settings.hold)
 
 

@@ -32,6 +32,7 @@ from analysis.chain.device import Device
 from analysis.chain.velocity_filter import VelocityFilter
 from analysis.profiles.controller import ControllerSection
 from analysis.profiles.model import Profile
+from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.sampled import (
     FilterOptimum,
     MeasuredTrials,
@@ -45,7 +46,6 @@ from analysis.sampled import zwidth_region as sampled_zwidth_region
 from analysis.study.requests import delays
 from analysis.study.displays import profile_filter
 from analysis.twoport.impedance import ImpedanceDisplay
-from analysis.twoport.results import Cancelled, Progress
 
 __all__ = ["OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "region_b", "noise_options", "twoport_limit",
            "zwidth_region", "zwidth_region_result", "ZWidthRequest", "OptimumRequest", "TrialsRequest",
@@ -253,6 +253,7 @@ def twoport_limit(request: ZWidthRequest | Profile) -> Callable[[np.ndarray], np
     return limit
 
 
+@none_if_cancelled
 def zwidth_region_result(request: ZWidthRequest | Profile, *, progress: Progress | None = None,
                          cancelled: Cancelled | None = None) -> ZWidthRegion | None:
     """The exact (B, K) region of the wall with its filter and delays, the passive region and
@@ -275,16 +276,14 @@ def zwidth_region_result(request: ZWidthRequest | Profile, *, progress: Progress
         The region on the request's B grid, or ``None`` once cancelled.
     """
     req = ZWidthRequest.of(request) if isinstance(request, Profile) else request
-    if progress is not None:
-        progress(0, 1)
-    if cancelled is not None and cancelled():
-        return None
+    report_progress(progress, 0, 1)
+    check_cancelled(cancelled)
     r = sampled_zwidth_region(req.device, req.b, req.delay_samples, req.velocity_filter,
                               implementation_delay=req.implementation_delay, twoport_limit=twoport_limit(req),
                               **req.noise)
-    if progress is not None:
-        progress(1, 1)
-    return None if cancelled is not None and cancelled() else r
+    report_progress(progress, 1, 1)
+    check_cancelled(cancelled)
+    return r
 
 
 def optimum_kind(profile: Profile) -> str:

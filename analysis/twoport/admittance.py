@@ -28,13 +28,12 @@ from analysis.chain.discretize import check_frequencies, held_spring_damper, mas
 from analysis.twoport.display_base import APPARENT_FREQUENCY, DisplayBase, safe_ratio
 from analysis.chain.limits import LIMITS
 from analysis.errors import ValidationError
+from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.twoport.results import (
     BoundResult,
-    Cancelled,
     DampingInterval,
     MassChart,
     MassDesign,
-    Progress,
     StabilityResult,
     TwoPort,
 )
@@ -458,6 +457,7 @@ class AdmittanceDisplay(DisplayBase):
         bc = math.sqrt(interval.low * interval.high) if math.isfinite(interval.high) else interval.low
         return MassDesign(mc=mc, bc=bc, frequency=interval.low_frequency, interval=interval)
 
+    @none_if_cancelled
     def mass_chart(self, mc_values, w=None, *, progress: Progress | None = None,
                    cancelled: Cancelled | None = None) -> MassChart | None:
         """Feasible b_c interval of eq. (21) as a function of m_c (the design chart).
@@ -485,11 +485,9 @@ class AdmittanceDisplay(DisplayBase):
         low = np.full(mcs.size, np.nan)
         high = np.full(mcs.size, np.nan)
         for i, mc in enumerate(mcs):
-            if cancelled is not None and cancelled():
-                return None
+            check_cancelled(cancelled)
             d = self.feasible_damping(float(mc), w)
             if d.feasible:
                 low[i], high[i] = d.low, d.high
-            if progress is not None:
-                progress(i + 1, mcs.size)
+            report_progress(progress, i + 1, mcs.size)
         return MassChart(mc=mcs, low=low, high=high)

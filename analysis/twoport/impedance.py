@@ -42,7 +42,8 @@ from analysis.chain.response import chain_response
 from analysis.chain.velocity_filter import VelocityFilter, display_filter
 from analysis.chain.discretize import check_frequencies, spring_damper, theta_of
 from analysis.twoport.display_base import APPARENT_FREQUENCY, DisplayBase, FrequencyGrid, safe_ratio
-from analysis.twoport.results import BoundResult, Cancelled, Progress, StabilityResult, StiffnessChart, StiffnessDesign, TwoPort
+from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
+from analysis.twoport.results import BoundResult, StabilityResult, StiffnessChart, StiffnessDesign, TwoPort
 
 __all__ = ["ImpedanceDisplay", "coupling_impedance", "re_inv_coupling", "kc_upper", "kc_upper_filtered"]
 
@@ -490,6 +491,7 @@ class ImpedanceDisplay(DisplayBase):
             return StiffnessDesign(bc=bc, kc=None, frequency=wmin, margin=float(np.min(m)), evaluations=evals)
         return StiffnessDesign(bc=bc, kc=kc, frequency=wmin, margin=float(np.min(m)), evaluations=evals)
 
+    @none_if_cancelled
     def stiffness_chart(self, bc_values, w=None, *, progress: Progress | None = None,
                         cancelled: Cancelled | None = None) -> StiffnessChart | None:
         """Largest k_c satisfying eq. (9) as a function of b_c (the design chart).
@@ -517,11 +519,9 @@ class ImpedanceDisplay(DisplayBase):
         kcs = np.full(bcs.size, np.nan)
         fr = np.full(bcs.size, np.nan)
         for i, bc in enumerate(bcs):
-            if cancelled is not None and cancelled():
-                return None
+            check_cancelled(cancelled)
             d = self.max_stiffness(float(bc), w)
             kcs[i] = np.nan if d.kc is None else d.kc
             fr[i] = d.frequency
-            if progress is not None:
-                progress(i + 1, bcs.size)
+            report_progress(progress, i + 1, bcs.size)
         return StiffnessChart(bc=bcs, kc=kcs, frequency=fr)

@@ -2,15 +2,11 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
-#: ``progress(done, total)``: called by long computations after each step
-Progress = Callable[[int, int], None]
-#: ``cancelled() -> bool``: polled by long computations between steps; true stops them
-Cancelled = Callable[[], bool]
+from analysis.progress import Cancelled, Progress  # the one protocol, re-exported here (issue 21)
 
 __all__ = [
     "Progress",

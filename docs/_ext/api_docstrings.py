@@ -31,7 +31,7 @@ from typing import Any
 PACKAGES = (
     "analysis", "analysis.chain", "analysis.twoport", "analysis.sampled", "analysis.transparency",
     "analysis.identify", "analysis.profiles", "analysis.study", "analysis.checks", "analysis.errors",
-    "analysis.resources",
+    "analysis.resources", "analysis.progress",
 )
 #: numpydoc's checks that we enforce (the style checks, such as the summary's mood, are not).
 CHECKS = ("GL08", "SS01", "PR01", "PR02", "RT01")
