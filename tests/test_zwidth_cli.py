@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import html
 import math
 from pathlib import Path
 
@@ -62,6 +63,8 @@ def test_export_filter_optimum_csv(capfd, profile_file, tmp_path):
     np.testing.assert_allclose(got[:, 0], o.cutoffs / (2 * math.pi), rtol=1e-12)
     np.testing.assert_allclose(got[:, 1], o.areas, rtol=1e-12)
     assert header[2].startswith("optimum") and rows[0][2] == pytest.approx(o.cutoff / (2 * math.pi), rel=1e-12)
+    # the verdict (issue 22): the same sentence as the report's, against no filter and the profile's 60 Hz filter
+    assert o.current == F and study.optimum_verdict(o) in out.read_text(encoding="utf-8")
 
 
 def test_report_has_the_zwidth_section_only_with_the_controller_section(profile_file):
@@ -73,5 +76,7 @@ def test_report_has_the_zwidth_section_only_with_the_controller_section(profile_
     assert c.numbers["zwidth.area_linear"][0] == r.area_linear
     assert c.numbers["zwidth.trials_wrong"][0] == score_trials(r, load_trials(p.controller.trials)).wrong_count
     assert any(s.title.startswith("Controller as built") for s in c.sections)
+    verdict = html.escape(study.optimum_verdict(c.results["zwidth_optimum"]))
+    assert any(verdict in par for s in c.sections for par in s.paragraphs)
     plain = gather(load_profile(bundled_profiles()["hbfd"]), sampled=False)
     assert "zwidth.area_linear" not in plain.numbers and "zwidth_region" not in plain.results

@@ -18,6 +18,7 @@ from analysis.study import (
     controller_section,
     filter_optimum,
     format_number,
+    optimum_verdict,
     profile_trials,
     trial_score,
     region_wall,
@@ -66,16 +67,20 @@ def zwidth_part(profile: Profile) -> Part:
              "N&sup2;&middot;s/m&sup2;"),
         _row(numbers, "zwidth.area_log", "region area on log axes", region.area_log, "decades&sup2;"),
         _row(numbers, "zwidth.optimum_cutoff", f"optimum cut-off ({html.escape(opt.kind)})", opt.cutoff * _HZ, "Hz"),
-        _row(numbers, "zwidth.optimum_area", "area at the optimum (linear)", opt.area, "N&sup2;&middot;s/m&sup2;"),
-        _row(numbers, "zwidth.backward_area", "area without a filter (linear)", opt.backward_area,
+        _row(numbers, "zwidth.optimum_area", f"{opt.criterion} at the optimum (linear)", opt.area,
+             "N&sup2;&middot;s/m&sup2;"),
+        _row(numbers, "zwidth.backward_area", f"{opt.criterion} without a filter (linear)", opt.backward_area,
              "N&sup2;&middot;s/m&sup2;"),
     ]
+    if opt.current is not None and opt.current_area is not None:
+        rows.append(_row(numbers, "zwidth.current_area", f"{opt.criterion} with the current filter (linear)",
+                         opt.current_area, "N&sup2;&middot;s/m&sup2;"))
     par = (f"Velocity estimate: {html.escape(sec.velocity_filter.label())}. The exact stable region of the "
            f"virtual wall (B, K) = (b<sub>c</sub>, k<sub>c</sub>) over B from {format_number(sec.b_range[0])} to "
            f"{format_number(sec.b_range[1])} N&middot;s/m (hands-off against the god-object wall, Colgate &amp; "
            f"Brown), with the passive region (Colgate &amp; Schenkel) and eq. (9)'s limit. The optimizer maximizes "
-           f"the linear area (Chawda et al.); the optimum is "
-           f"{'inside the cut-off grid' if opt.interior else 'at the edge of the cut-off grid'}. The current wall "
+           f"the linear {opt.criterion} over the cut-off (Chawda et al.) and compares it with no filter and the "
+           f"current filter: {html.escape(optimum_verdict(opt))} The current wall "
            f"({format_number(b)} N&middot;s/m, {format_number(k)} N/m) is "
            f"{'inside' if region.stable(b, k) else 'outside'} the region.")
     after: list[str] = []

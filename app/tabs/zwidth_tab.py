@@ -3,7 +3,10 @@
 * the (B, K) region of the virtual wall with the passive region, eq. (9)'s limit and the
   imported hardware trials (Colgate & Brown, ICRA 1994) -- a click sets the wall ``(b_c, k_c)``;
 * the region's area against the velocity filter's cut-off, with the optimum marked (Chawda,
-  Celik & O'Malley 2015).
+  Celik & O'Malley 2015).  "Use the optimum cut-off" is enabled only when the optimum beats the
+  current design by the criterion (``FilterOptimum.offer``); it reads "Remove the filter" when no
+  filter is best and a filter is set, and its tooltip is the verdict
+  (:func:`analysis.study.optimum_verdict`).
 
 Both are asynchronous graph nodes (:mod:`app.core.nodes_zwidth`) on the worker, with progress and
 Cancel.  The velocity filter is edited in the parameter panel
@@ -13,6 +16,7 @@ Cancel.  The velocity filter is edited in the parameter panel
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Hashable
 from typing import Any
@@ -34,7 +38,7 @@ from PySide6.QtWidgets import (
 from analysis import ValidationError
 from analysis.chain.velocity_filter import VelocityFilter
 from analysis.sampled import DEFAULT_FORCE_NOISE, load_trials
-from analysis.study import controller_section, trial_score, wall_edits, region_wall
+from analysis.study import controller_section, format_number, optimum_verdict, region_wall, trial_score, wall_edits
 
 from app.core import nodes_zwidth
 from app.core.compute_graph import ComputeGraph
@@ -54,6 +58,8 @@ from app.widgets.citation_note import CitationNote
 
 __all__ = ["ZWidthTab", "TAB"]
 
+#: the optimum button's text when it offers nothing, and its tooltip before the optimum is computed
+APPLY_TEXT, APPLY_TIP = "Use the optimum cut-off", "Set the velocity filter to the cut-off that maximizes the area"
 TITLES = {REGION_NODE: "Z-width region", OPTIMUM_NODE: "Optimum filter cut-off"}
 SHORT_TITLES = {REGION_NODE: "Z-width region", OPTIMUM_NODE: "Optimum cut-off"}
 
@@ -127,8 +133,8 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         self.trials_label.setWordWrap(True)
         self.trials_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
         form.addRow(self.trials_label)
-        self.apply_button = QPushButton("Use the optimum cut-off")
-        self.apply_button.setToolTip("Set the velocity filter to the cut-off that maximizes the area")
+        self.apply_button = QPushButton(APPLY_TEXT)
+        self.apply_button.setToolTip(APPLY_TIP)
         self.apply_button.clicked.connect(self.apply_optimum)
         self.apply_button.setEnabled(False)
         form.addRow(self.apply_button)
@@ -204,13 +210,28 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         else:
             self.set_noise(None)
 
+    def _offer(self) -> VelocityFilter | None:
+        """The optimum's offer for the current design (``None``: nothing better, or not computed yet)."""
+        g = self.ctx.graph
+        opt = g.result(OPTIMUM_NODE) if g.is_fresh(OPTIMUM_NODE) else None
+        return None if opt is None else opt.offer
+
     @Slot()
     def apply_optimum(self) -> str | None:
-        """Set the velocity filter to the optimum's kind and cut-off (one undo step)."""
-        opt = self.ctx.graph.result(OPTIMUM_NODE)
-        if opt is None:
+        """Set the velocity filter to the optimum's offer, the cut-off or no filter (one undo step);
+        nothing when the optimum does not beat the current design."""
+        offer = self._offer()
+        if offer is None:
             return None
-        return self._refuse(self.section.write("velocity_filter", VelocityFilter(opt.kind, opt.cutoff), "optimum filter"))
+        what = "no velocity filter" if offer.is_backward else "optimum filter"
+        return self._refuse(self.section.write("velocity_filter", offer, what))
+
+    def _show_offer(self, opt: Any) -> None:
+        """The optimum button: enabled with what it sets only when the fresh optimum beats the design."""
+        offer = self._offer()
+        self.apply_button.setText(offer_text(offer))
+        self.apply_button.setEnabled(offer is not None)
+        self.apply_button.setToolTip(APPLY_TIP if opt is None else optimum_verdict(opt))
 
     @Slot()
     def _on_import(self) -> None:
@@ -269,7 +290,7 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
             self.optimum_view.update_optimum(opt)
         self.optimum_view.update_filter(sec.velocity_filter)
         self.optimum_view.set_busy(self._busy(OPTIMUM_NODE))
-        self.apply_button.setEnabled(opt is not None)
+        self._show_offer(opt)
         self._show_trials(trials, study)
         self.region_view.set_warning([e for n, e in self._errors.items() if n != OPTIMUM_NODE])
         if OPTIMUM_NODE in self._errors:
@@ -298,6 +319,16 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
 
     def views(self) -> list[PlotView]:
         return [self.region_view, self.optimum_view]
+
+
+def offer_text(offer: VelocityFilter | None) -> str:
+    """The optimum button's text for ``offer``: the cut-off it sets, "Remove the filter", or the
+    plain :data:`APPLY_TEXT` when it offers nothing (disabled)."""
+    if offer is None:
+        return APPLY_TEXT
+    if offer.is_backward:
+        return "Remove the filter"
+    return f"{APPLY_TEXT} ({format_number(offer.cutoff / (2 * math.pi), 4)} Hz)"
 
 
 def _column(*widgets: QWidget) -> QWidget:

@@ -3,8 +3,11 @@
 Chawda, Celik & O'Malley (ASME JDSMC 137(2), 2015) show that the Z-width of a haptic display
 has a maximum over the velocity filter's cut-off.  The curve is the linear area of the
 (B, K) region (:data:`analysis.sampled.OPTIMIZER_AREA`, the measure the optimizer maximizes)
-at each cut-off, in Hz on a log axis; the refined optimum is a star, the raw backward
-difference's area a dashed horizontal line, and the profile's own cut-off a vertical line.
+at each cut-off, in Hz on a log axis -- the noise-limited area when the encoder-noise criterion is
+on; the refined optimum is a star, the raw backward difference's area a dashed horizontal line,
+and the profile's own cut-off a vertical line.  The header prints the verdict of
+:func:`analysis.study.optimum_verdict` (the report and the CLI's export print the same sentence):
+no filter is best when no cut-off beats it.
 """
 
 from __future__ import annotations
@@ -18,7 +21,8 @@ from PySide6.QtWidgets import QWidget
 
 from analysis.chain.velocity_filter import FILTER_KINDS, VelocityFilter
 from analysis.sampled import FilterOptimum
-from analysis.study.quantities import format_number, rich_numbers
+from analysis.study import optimum_verdict
+from analysis.study.quantities import rich_numbers
 
 from app.views.base import PlotView, Series
 
@@ -80,11 +84,8 @@ class FilterOptimumView(PlotView):
             self.best.setData([opt.cutoff * _HZ], [opt.area])
             self.backward.setPos(opt.backward_area)
             self.backward.show()
-            self.set_legend_text(self.area, f"area, {FILTER_KINDS[opt.kind]}")
-            gain = opt.area / opt.backward_area - 1.0 if opt.backward_area > 0 else math.nan
-            where = "interior optimum" if opt.interior else "optimum at the grid's edge"
-            self.summary = (f"{where}: f<sub>c</sub> = {format_number(opt.cutoff * _HZ, 4)} Hz, "
-                            f"area {format_number(opt.area, 4)} ({format_number(gain, 3, scale=100)} % vs no filter)")
+            self.set_legend_text(self.area, f"{opt.criterion}, {FILTER_KINDS[opt.kind]}")
+            self.summary = optimum_verdict(opt)
             self._series = [Series(f"area ({opt.kind}, {opt.measure})", CUTOFF_LABEL, AREA_LABEL, f,
                                    np.asarray(opt.areas, float)),
                             Series("optimum", CUTOFF_LABEL, AREA_LABEL, np.array([opt.cutoff * _HZ]),

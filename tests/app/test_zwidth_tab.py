@@ -148,3 +148,58 @@ def test_encoder_noise_fields_limit_the_region_in_one_undo_step(win, qtbot):
     qtbot.waitUntil(lambda: math.isinf(tab.region_view.region.b_noise) and win.graph.is_fresh(REGION_NODE),
                     timeout=60000)
     assert not tab.noise_box.isChecked()
+
+
+def _fresh_optimum(win, qtbot, tab):
+    """Wait for the optimum node of the current profile, drawn in the tab."""
+    from app.core.nodes_zwidth import OPTIMUM_NODE
+
+    def done() -> bool:
+        g = win.graph
+        return g.is_fresh(OPTIMUM_NODE) and g.result(OPTIMUM_NODE) is not None \
+            and tab.optimum_view.optimum is g.result(OPTIMUM_NODE)
+
+    qtbot.waitUntil(done, timeout=180000)
+    tab.refresh()
+    return tab.optimum_view.optimum
+
+
+def test_optimum_button_is_disabled_without_noise_and_removes_a_filter(win, qtbot):
+    """Issue 22: on the HBFD without encoder noise no cut-off beats the unfiltered design, so
+    "Use the optimum cut-off" is disabled (the verdict says why); with a filter set it offers to
+    remove it, in one undo step."""
+    from app.tabs.zwidth_tab import APPLY_TEXT
+
+    tab = show(win, qtbot)
+    assert tab.section.write("b_points", 10, "B points") is None  # a coarse B grid: a quick optimum
+    opt = _fresh_optimum(win, qtbot, tab)
+    assert opt.current is None and opt.offer is None and opt.area < opt.backward_area
+    assert not tab.apply_button.isEnabled() and tab.apply_button.text() == APPLY_TEXT
+    assert "without encoder noise nothing is gained" in tab.apply_button.toolTip()
+    assert "No filter is best" in tab.optimum_view.summary
+    depth = win.undo_stack.index()
+    assert tab.apply_optimum() is None and win.undo_stack.index() == depth
+    f20 = VelocityFilter("lowpass1", 2 * math.pi * 20.0)
+    assert tab.section.write("velocity_filter", f20, "filter") is None
+    opt = _fresh_optimum(win, qtbot, tab)
+    assert opt.current == f20 and opt.offer is not None and opt.offer.is_backward
+    assert tab.apply_button.isEnabled() and tab.apply_button.text() == "Remove the filter"
+    depth = win.undo_stack.index()
+    qtbot.mouseClick(tab.apply_button, Qt.MouseButton.LeftButton)
+    assert win.undo_stack.index() == depth + 1 and win.model.profile.controller.velocity_filter.is_backward
+
+
+def test_optimum_button_offers_the_interior_optimum_with_noise(win, qtbot):
+    """With the encoder-noise criterion the noise-limited area has an interior optimum: offered,
+    applied in one undo step, and then nothing more is offered."""
+    tab = show(win, qtbot)
+    assert tab.section.write_many({"b_points": 10, "encoder_resolution": 1e-5}, "noise") is None
+    opt = _fresh_optimum(win, qtbot, tab)
+    assert opt.noise_limited and opt.interior and opt.offer == VelocityFilter("lowpass1", opt.cutoff)
+    assert tab.apply_button.isEnabled() and "Hz)" in tab.apply_button.text()
+    depth = win.undo_stack.index()
+    qtbot.mouseClick(tab.apply_button, Qt.MouseButton.LeftButton)
+    assert win.undo_stack.index() == depth + 1
+    assert win.model.profile.controller.velocity_filter == opt.offer
+    after = _fresh_optimum(win, qtbot, tab)
+    assert after.current == opt.offer and after.offer is None and not tab.apply_button.isEnabled()
