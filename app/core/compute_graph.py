@@ -31,6 +31,7 @@ from typing import Any
 from PySide6.QtCore import QObject, QTimer, Signal, Slot
 
 from analysis.profiles.io import Profile
+from analysis.progress import Cancelled, Progress  # the one protocol (issue 21), re-exported here
 
 from app.core.model import ALL_FIELDS, ProfileModel
 from app.core.worker import TaskRunner
@@ -40,8 +41,6 @@ __all__ = ["Node", "ComputeGraph", "DragPause", "Pull", "Progress", "Cancelled",
 _NOTHING = object()
 
 Pull = Callable[[str], Any]
-Progress = Callable[[int, int], None]
-Cancelled = Callable[[], bool]
 
 #: A drag that has not moved for this long has paused: the held-back nodes catch up (ms).
 SETTLE_MS = 200
@@ -354,7 +353,7 @@ class ComputeGraph(QObject):
             node.calls += 1
             node.pending_key = key
 
-            def job(progress: Callable[[int, int], None], cancelled: Callable[[], bool]) -> Any:
+            def job(progress: Progress, cancelled: Cancelled) -> Any:
                 return key, node.func(key, progress, cancelled)
 
             self.runner.submit(name, job)
@@ -372,7 +371,7 @@ class ComputeGraph(QObject):
         if node is None or payload is None:
             return
         key, value = payload  # type: ignore[misc]
-        if value is None:  # the job stopped early
+        if value is None:  # the job stopped early (a cancelled computation returns None)
             return
         node.value, node.value_key, node.pending_key = value, key, _NOTHING
         node.dirty = key != node.request(self.model.profile, node.params)

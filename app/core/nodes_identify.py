@@ -14,8 +14,9 @@ from collections.abc import Mapping, Sequence
 
 from analysis.identify import Measurement
 from analysis.study import IdentifyResult, RobustDesigns, RobustRequest, identify_chain, robust_designs
+from analysis.progress import Cancelled, Progress
 
-from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress
+from app.core.compute_graph import ComputeGraph, Node
 from app.core.model import DEVICE_FIELDS
 
 __all__ = ["FIT_NODE", "ROBUST_NODE", "NODES", "fit_params", "register"]

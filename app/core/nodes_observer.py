@@ -24,8 +24,9 @@ from analysis.study import (
     observer_settings,
     observer_step,
 )
+from analysis.progress import Cancelled, Progress
 
-from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress
+from app.core.compute_graph import ComputeGraph, Node
 from app.core.model import DEVICE_FIELDS
 
 __all__ = ["OBSERVER_W", "NODES", "HELD_NODES", "observer_settings", "register"]

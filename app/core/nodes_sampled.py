@@ -46,7 +46,8 @@ from analysis.study import (
 )
 
 from analysis.study.labels import PARAMETER_LABELS
-from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress
+from analysis.progress import Cancelled, Progress
+from app.core.compute_graph import ComputeGraph, Node
 from app.core.nodes_stability import DEVICE_INPUTS, GAIN_FIELDS
 
 __all__ = ["MAP_NODE", "EXACT_NODE", "LIMIT_NODE", "SIM_NODE", "POINT_NODE", "ASYNC_NODES", "MAP_AXES", "DEFAULT_RANGES",

@@ -25,8 +25,9 @@ from analysis.study import (
     stability,
 )
 from analysis.twoport import DisplayBase, MassDesign
+from analysis.progress import Cancelled, Progress
 
-from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress, Pull
+from app.core.compute_graph import ComputeGraph, Node, Pull
 from app.core.model import DEVICE_FIELDS, ProfileModel
 from app.core.worker import TaskRunner
 

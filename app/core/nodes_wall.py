@@ -36,7 +36,8 @@ from analysis.study import (
 )
 
 from analysis.study.labels import HOLD_LABELS, PLANT_LABELS
-from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress, Pull
+from analysis.progress import Cancelled, Progress
+from app.core.compute_graph import ComputeGraph, Node, Pull
 from app.core.model import DEVICE_FIELDS
 
 __all__ = ["DEFAULT_BC", "NODES", "AT_BC_NODES", "HOLD_LABELS", "PLANT_LABELS", "wall_settings", "wall_design",

@@ -25,8 +25,9 @@ from analysis.study import (
     profile_trials,
     zwidth_region_result,
 )
+from analysis.progress import Cancelled, Progress
 
-from app.core.compute_graph import Cancelled, ComputeGraph, Node, Progress
+from app.core.compute_graph import ComputeGraph, Node
 from app.core.nodes_stability import DEVICE_INPUTS
 
 __all__ = ["REGION_NODE", "OPTIMUM_NODE", "TRIALS_NODE", "ZWIDTH_NODES", "register"]

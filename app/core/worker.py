@@ -1,7 +1,9 @@
 """Background work: one :class:`TaskRunner` runs named jobs on its own thread pool.
 
 A job is ``fn(progress, cancelled) -> result``; ``progress(done, total)`` reports, ``cancelled()``
-says whether to stop early.  Submitting a job under a name supersedes the running job of that
+says whether to stop early (the one protocol of :mod:`analysis.progress`): a job that stops
+returns ``None`` or raises :class:`~analysis.progress.OperationCancelled`, and either way its end
+is dropped quietly (it was cancelled or superseded, so nobody waits for it).  Submitting a job under a name supersedes the running job of that
 name: its generation number becomes stale and its result is dropped when it arrives.
 """
 
@@ -18,10 +20,11 @@ from app import qt_compat  # noqa: F401 - before any Qt call (PySide6 6.12 on Py
 from PySide6.QtCore import QObject, QRunnable, QThreadPool, Signal, Slot
 
 from analysis.errors import ValidationError
+from analysis.progress import Cancelled, OperationCancelled, Progress
 
 __all__ = ["TaskRunner", "Job"]
 
-Job = Callable[[Callable[[int, int], None], Callable[[], bool]], Any]
+Job = Callable[[Progress, Cancelled], Any]
 
 
 class _Relay(QObject):
@@ -121,6 +124,8 @@ class _Runnable(QRunnable):
         try:
             with self._gil:
                 result = self._fn(progress, lambda: self._priority.checkpoint(self._stop))
+        except OperationCancelled:  # stopped by its cancel hook: cancelled or superseded, nothing to report
+            result = None
         except ValidationError as exc:  # an input beyond its range or a work limit: the message says which
             self._relay.error.emit(name, gen, str(exc))
             return

@@ -12,7 +12,9 @@
 
 from __future__ import annotations
 
-__all__ = ["build_report", "REPORT_FORMATS", "report_format"]
+from analysis.progress import Cancelled, Progress, check_cancelled, report_progress
+
+__all__ = ["build_report", "REPORT_FORMATS", "report_format", "report_stages"]
 
 REPORT_FORMATS = {"pdf": "PDF document (*.pdf)", "html": "HTML page (*.html *.htm)"}
 
@@ -23,12 +25,22 @@ def report_format(path) -> str | None:
     return {"pdf": "pdf", "html": "html", "htm": "html"}.get(suffix)
 
 
-def build_report(profile, path, *, page_size: str = "a4", source: str | None = None, progress=None,
+def report_stages(fmt: str) -> tuple[str, ...]:
+    """What :func:`build_report` does next after ``progress(done, total)``: the text of stage ``done``
+    (``total = len(stages) - 1``; the last is ``"Done"``) for a report of format ``fmt``."""
+    return ("Analysing the profile", "Drawing the figures", f"Writing the {fmt.upper()}", "Done")
+
+
+def build_report(profile, path, *, page_size: str = "a4", source: str | None = None,
+                 progress: Progress | None = None, cancelled: Cancelled | None = None,
                  sampled: bool = True) -> dict:
     """Write the report of ``profile`` to ``path`` (format by extension); returns build info.
 
-    ``progress(step, total, text)`` is called between stages; returning ``False`` cancels
-    (raises :class:`ReportCancelled`).  Needs a ``QApplication`` (see :func:`.figures.ensure_app`).
+    The hooks of :mod:`analysis.progress`: ``progress(done, total)`` is called before each stage
+    (:func:`report_stages` names them) and once written; ``cancelled()`` is polled before each
+    stage, and once it is true the build stops and raises
+    :class:`~analysis.progress.OperationCancelled` (``ReportCancelled``) with nothing written.
+    Needs a ``QApplication`` (see :func:`.figures.ensure_app`).
     The file is written atomically (:func:`analysis.profiles.atomic_write`); a target that cannot
     be written (a folder, a missing folder) raises its ``WriteError`` (an ``OSError``) before any work.
     """
@@ -36,7 +48,7 @@ def build_report(profile, path, *, page_size: str = "a4", source: str | None = N
 
     from analysis.profiles import WriteError
     from analysis.profiles.files import unwritable_reason
-    from app.report.content import ReportCancelled, gather
+    from app.report.content import gather
     from app.report.figures import build_figures
 
     fmt = report_format(path)
@@ -46,16 +58,17 @@ def build_report(profile, path, *, page_size: str = "a4", source: str | None = N
     if reason is not None:  # say so before a minute of analysis, not after (a folder, a missing folder)
         raise WriteError(path, reason)
     t0 = time.perf_counter()
+    total = len(report_stages(fmt)) - 1
 
-    def step(i: int, text: str) -> None:
-        if progress is not None and progress(i, 4, text) is False:
-            raise ReportCancelled("cancelled")
+    def step(done: int) -> None:
+        report_progress(progress, done, total)
+        check_cancelled(cancelled, "the report was cancelled")
 
-    step(0, "Analysing the profile")
+    step(0)
     content = gather(profile, source=source, sampled=sampled)
-    step(1, "Drawing the figures")
+    step(1)
     figures = build_figures(content)
-    step(2, "Writing the " + fmt.upper())
+    step(2)
     if fmt == "pdf":
         from app.report.pdf import write_pdf
 
@@ -65,7 +78,7 @@ def build_report(profile, path, *, page_size: str = "a4", source: str | None = N
 
         write_html(content, figures, path)
         pages = None
-    step(4, "Done")
+    report_progress(progress, total, total)  # written: too late to cancel
     for fig in figures:
         fig.view.deleteLater()
     return {"format": fmt, "pages": pages, "seconds": time.perf_counter() - t0, "figures": len(figures)}

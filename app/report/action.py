@@ -9,8 +9,9 @@ from app import qt_compat  # noqa: F401 - before any Qt call
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QApplication, QFileDialog, QMessageBox, QProgressDialog, QWidget
 
-from app.report import REPORT_FORMATS, build_report, report_format
-from app.report.content import ReportCancelled
+from analysis.progress import OperationCancelled
+
+from app.report import REPORT_FORMATS, build_report, report_format, report_stages
 
 __all__ = ["export_report"]
 
@@ -35,18 +36,18 @@ def export_report(window: QWidget, path: str | None = None, page_size: str = "a4
     dlg.setWindowModality(Qt.WindowModality.WindowModal)
     dlg.setMinimumDuration(0)
     dlg.setValue(0)
+    stages = report_stages(str(report_format(path)))
 
-    def progress(step: int, total: int, text: str) -> bool:
+    def progress(done: int, total: int) -> None:
         dlg.setMaximum(total)
-        dlg.setLabelText(text + "…")
-        dlg.setValue(step)
-        QApplication.processEvents()
-        return not dlg.wasCanceled()
+        dlg.setLabelText(stages[done] + "…")
+        dlg.setValue(done)
+        QApplication.processEvents()  # the Cancel click arrives here; cancelled() reads it
 
     try:
         build_report(profile, path, page_size=page_size, source=source if isinstance(source, str) else None,
-                     progress=progress)
-    except ReportCancelled:
+                     progress=progress, cancelled=dlg.wasCanceled)
+    except OperationCancelled:
         return False
     except Exception as err:  # noqa: BLE001 - shown to the user, never a crash of the app
         dlg.close()

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from analysis.profiles import Profile
+from analysis.progress import OperationCancelled
 from analysis.study import PARAMETER_LABELS, Headline, format_number
 
 __all__ = ["Row", "Section", "Figure", "Part", "ReportContent", "ReportCancelled", "num", "symbol_html", "row",
@@ -26,8 +27,9 @@ DIGITS = 6
 Numbers = dict[str, tuple[float | None, str]]
 
 
-class ReportCancelled(Exception):
-    pass
+#: A report build stopped by its ``cancelled()`` hook.  Deprecated alias of
+#: :class:`analysis.progress.OperationCancelled` (the one cancel protocol, issue 21), kept for one release.
+ReportCancelled = OperationCancelled
 
 
 def num(x: Any, digits: int = DIGITS, *, rich: bool = False) -> str:
