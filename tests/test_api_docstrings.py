@@ -1,0 +1,100 @@
+"""The numpydoc check of the public API (docs/_ext/api_docstrings.py, run by the docs build).
+
+The check itself must catch what it promises to catch, and the public API of ``analysis`` must
+pass it (the docs build fails on any fault; this test says which one without building the docs).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib.util
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def load_checker():
+    spec = importlib.util.spec_from_file_location("api_docstrings", ROOT / "docs" / "_ext" / "api_docstrings.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules.setdefault("api_docstrings", module)
+    spec.loader.exec_module(module)
+    return module
+
+
+checker = load_checker()
+
+
+def undocumented(x: float, y: float) -> float:
+    """Add two numbers.
+
+    Parameters
+    ----------
+    x : float
+        The first.
+    """
+    if x < 0:
+        raise ValueError("negative")
+    return x + y
+
+
+def documented(x: float) -> float:
+    """Double a number.
+
+    Parameters
+    ----------
+    x : float
+        The number.
+
+    Returns
+    -------
+    float
+        Twice ``x``.
+
+    Raises
+    ------
+    ValueError
+        When ``x`` is negative.
+    """
+    if x < 0:
+        raise ValueError("negative")
+    return 2 * x
+
+
+@dataclasses.dataclass(frozen=True)
+class Record:
+    """A record.
+
+    Parameters
+    ----------
+    a : float
+        The first field.
+    """
+
+    a: float
+    b: float | None = None
+
+
+def codes(obj) -> set[str]:
+    return {fault.split()[0] for fault in checker.faults(obj)}
+
+
+def test_the_checker_finds_a_missing_parameter_return_and_raises():
+    assert codes(undocumented) == {"PR01", "RT01", "RA01"}
+
+
+def test_a_complete_numpydoc_docstring_passes():
+    assert checker.faults(documented) == []
+
+
+def test_a_dataclass_field_with_a_none_default_must_be_documented():
+    assert codes(Record) == {"PR01"}
+    assert "b" in checker.faults(Record)[0]
+
+
+@pytest.mark.parametrize("package", checker.PACKAGES)
+def test_the_public_api_has_numpydoc_docstrings(package):
+    found = checker.report((package,))
+    assert not found, "\n".join(f"{q}: {f}" for q, items in found.items() for f in items)
