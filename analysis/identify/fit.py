@@ -99,6 +99,51 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
     :func:`analysis.identify.uncertainty.profile_selection`.  ``cancelled()`` is asked before
     every model evaluation; once it returns True the fit raises
     :class:`~analysis.progress.OperationCancelled` (``FitCancelled``).
+
+    Parameters
+    ----------
+    measurements : sequence of Measurement
+        The measurements fitted together (at least one).
+    n_masses : int
+        Number of masses of the chain, >= 1.
+    ground_dampings : sequence of int or None, optional
+        Indices (0-based, handle 0) of the masses with a damper to ground; ``None``: the
+        actuator, ``(n_masses - 1,)``.
+    fixed : mapping of str to float or None, optional
+        Known values by key, e.g. ``{"masses[0]": 0.02}`` [kg, N/m or N s/m]; masses and
+        stiffnesses > 0, dampings >= 0.
+    sensor_element : int, optional
+        The element of the force gauge (``gauge`` measurements), 0-based.
+    sample_time : float or None, optional
+        Sample time [s] of the fitted device; ``None``: the measurements' common one, else 1 ms.
+    band_min : float, optional
+        Lowest frequency [rad/s] of the fitted device's analysis band.
+    starts : int, optional
+        Number of seeded start candidates when the data do not show every resonance.
+    seed : int, optional
+        Seed of the start candidates.
+    max_nfev : int, optional
+        Largest number of residual evaluations of each full solver run.
+    intervals : str, optional
+        ``"auto"``, ``"wald"`` or ``"profile"`` (:data:`INTERVAL_MODES`).
+    cancelled : callable or None, optional
+        ``cancelled() -> bool``, asked before every model evaluation.
+
+    Returns
+    -------
+    ChainFit
+        The fitted device with its parameter table, intervals, covariance, criteria, responses
+        and warnings.
+
+    Raises
+    ------
+    ValidationError
+        For no measurements, ``n_masses`` not an integer >= 1, a ground-damping index outside
+        the chain, a fixed value out of range, or an unknown ``intervals`` mode.
+    ParameterKeyError
+        When a key of ``fixed`` does not name a parameter of an ``n_masses`` chain.
+    OperationCancelled
+        When ``cancelled()`` returns True (``FitCancelled`` is its deprecated alias).
     """
     fixed = dict(fixed or {})
     ground = tuple(sorted(set((n_masses - 1,) if ground_dampings is None else (int(g) for g in ground_dampings))))
@@ -267,6 +312,28 @@ def order_selection(measurements: Sequence[Measurement], max_masses: int, *, min
     :func:`fit_chain` (``intervals`` defaults to ``"wald"`` here: the table needs no profiles);
     ``ground_dampings`` defaults to the actuator of each order.  An order that
     cannot be fitted (e.g. a fixed key outside the chain) is reported with ``nan``.
+
+    Parameters
+    ----------
+    measurements : sequence of Measurement
+        The measurements fitted together.
+    max_masses : int
+        Largest number of masses fitted.
+    min_masses : int, optional
+        Smallest number of masses fitted.
+    **kwargs
+        Keyword arguments of :func:`fit_chain`.
+
+    Returns
+    -------
+    OrderSelection
+        The criteria and fit of each order (``nan`` and the error message where the fit raised
+        a ``ValueError``), and the order with the lowest BIC.
+
+    Raises
+    ------
+    OperationCancelled
+        When ``cancelled()`` (passed in ``kwargs``) returns True.
     """
     out = []
     kwargs.setdefault("intervals", "wald")

@@ -47,6 +47,20 @@ class FitProblem:
     ``keys`` are the free parameters, ``theta = log(values of keys)``.  ``cancelled`` (optional)
     is asked before every model evaluation; when it returns True the evaluation raises
     :class:`~analysis.progress.OperationCancelled` (``FitCancelled``).
+
+    Parameters
+    ----------
+    measurements : tuple of Measurement
+        The measurements fitted together.
+    keys : tuple of str
+        The free parameter keys (:mod:`analysis.identify.params`), in the order of ``theta``.
+    base : ChainParameters
+        One chain (its first row is used) holding every parameter: the fixed ones at their
+        values, the free ones at any value.
+    sensor_element : int, optional
+        The element of the force gauge (``gauge`` measurements), 0-based.
+    cancelled : callable or None, optional
+        ``cancelled() -> bool``, asked before every model evaluation; ``None``: never cancelled.
     """
 
     measurements: tuple[Measurement, ...]
@@ -56,7 +70,20 @@ class FitProblem:
     cancelled: Cancelled | None = None
 
     def sub(self, keys: tuple[str, ...], base: ChainParameters) -> FitProblem:
-        """The same measurements, sensor and cancel hook with other free ``keys`` and ``base``."""
+        """The same measurements, sensor and cancel hook with other free ``keys`` and ``base``.
+
+        Parameters
+        ----------
+        keys : tuple of str
+            The free parameter keys of the new problem.
+        base : ChainParameters
+            The chain holding every other parameter.
+
+        Returns
+        -------
+        FitProblem
+            A new problem; this one is unchanged.
+        """
         return FitProblem(self.measurements, tuple(keys), base, self.sensor_element, self.cancelled)
 
     @property
@@ -64,16 +91,60 @@ class FitProblem:
         return 2 * sum(m.size for m in self.measurements)
 
     def chains(self, thetas: np.ndarray) -> ChainParameters:
+        """The chains of ``P`` log-parameter rows: ``base`` with :attr:`keys` set to ``exp(thetas)``.
+
+        Parameters
+        ----------
+        thetas : numpy.ndarray
+            Logs of the free parameters (values in kg, N/m, N s/m), shape (P, p) or (p,).
+
+        Returns
+        -------
+        ChainParameters
+            ``P`` chains.
+        """
         return ChainParameters.from_rows(list(self.keys), np.exp(np.atleast_2d(thetas)), self.base)
 
     def responses(self, thetas: np.ndarray) -> list[np.ndarray]:
-        """Model responses (P, F_m) per measurement."""
+        """Model responses (P, F_m) per measurement.
+
+        Parameters
+        ----------
+        thetas : numpy.ndarray
+            Logs of the free parameters, shape (P, p) or (p,).
+
+        Returns
+        -------
+        list of numpy.ndarray
+            One complex array per measurement, shape (P, F_m), at its frequencies and in its
+            quantity's unit (m/N or N/N).
+        """
         p = self.chains(thetas)
         return [response(p, m.frequency, m.quantity, m.boundary, self.sensor_element, m.sample_time,
                          m.delay_samples) for m in self.measurements]
 
     def residual_rows(self, thetas: np.ndarray) -> np.ndarray:
-        """Real residual vectors (P, R) of ``P`` parameter rows (module doc)."""
+        """Real residual vectors (P, R) of ``P`` parameter rows (module doc).
+
+        A row that is not finite, has ``|theta| >= 80`` or whose model cannot be evaluated gets
+        the penalty ``1e6`` in every entry (so does every non-finite entry).
+
+        Parameters
+        ----------
+        thetas : numpy.ndarray
+            Logs of the free parameters, shape (P, p) or (p,).
+
+        Returns
+        -------
+        numpy.ndarray
+            ``[Re r, Im r]`` of each measurement in turn, concatenated, shape (P, R) with
+            ``R = 2 sum F_m`` (:attr:`n_residuals`).
+
+        Raises
+        ------
+        OperationCancelled
+            When ``cancelled()`` returns True (``FitCancelled`` is its deprecated alias).
+        """
         check_cancelled(self.cancelled, "the fit was cancelled")
         thetas = np.atleast_2d(np.asarray(thetas, float))
         bad = ~np.all(np.isfinite(thetas) & (np.abs(thetas) < _THETA_MAX), axis=1)
@@ -94,10 +165,46 @@ class FitProblem:
         return np.where(np.isfinite(out), out, _PENALTY)
 
     def residual(self, theta: np.ndarray) -> np.ndarray:
+        """The real residual vector of one parameter row (the function least squares minimizes).
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Logs of the free parameters, shape (p,).
+
+        Returns
+        -------
+        numpy.ndarray
+            The residual, shape (R,) (:meth:`residual_rows`).
+
+        Raises
+        ------
+        OperationCancelled
+            When ``cancelled()`` returns True (``FitCancelled`` is its deprecated alias).
+        """
         return self.residual_rows(np.asarray(theta, float)[None, :])[0]
 
     def jacobian(self, theta: np.ndarray, central: bool = False) -> np.ndarray:
-        """Finite-difference Jacobian (R, p) in log-parameters, all perturbations in one batch."""
+        """Finite-difference Jacobian (R, p) in log-parameters, all perturbations in one batch.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Logs of the free parameters, shape (p,).
+        central : bool, optional
+            ``True``: central differences with step ``1e-5`` (second-order, used for the
+            covariance); ``False``: forward differences with step ``1e-7`` (the solver's).
+
+        Returns
+        -------
+        numpy.ndarray
+            ``d residual / d theta``, shape (R, p).
+
+        Raises
+        ------
+        OperationCancelled
+            When ``cancelled()`` returns True (raised by :meth:`residual_rows`).
+        """
         theta = np.asarray(theta, float)
         p = theta.size
         if central:
