@@ -16,7 +16,9 @@ After every step the invariants hold:
 
 :class:`GuiDriver` holds the actions and the checks; the hypothesis machine draws its arguments, and
 ``tests/benchmarks/bench_state_machine.py`` runs the same driver for 10^4 random steps.  Seeded
-(``derandomize=True``): ``make test`` runs the same few hundred steps every time.
+(``derandomize=True``): ``make test`` runs the same 4 x 50 steps every time, the slow tier 12 x 60
+and the 10^4 seeded steps.  The verdict is compared with the headline computed once per distinct
+profile (:meth:`GuiDriver.headline`): undo, redo and the round trips revisit profiles.
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ from typing import Any
 import hypothesis.strategies as st
 import pytest
 from hypothesis import HealthCheck, settings
-from hypothesis.stateful import RuleBasedStateMachine, invariant, rule, run_state_machine_as_test
+from hypothesis.stateful import RuleBasedStateMachine, invariant, precondition, rule, run_state_machine_as_test
 from PySide6.QtCore import QCoreApplication, QEvent, QSettings, QtMsgType, qInstallMessageHandler
 from PySide6.QtWidgets import QApplication
 
@@ -50,6 +52,11 @@ PRESETS = sorted(bundled_profiles())
 TYPED = ("inside", "negative", "zero", "huge")
 VERDICT_KEYS = {"reserve": "stability_reserve", "margin": "worst_margin", "eta": "min_eta", "kmax": "k_max",
                 "bmin": "b_min"}
+#: the hypothesis machine adds masses up to this chain length (its simplest example is one rule
+#: repeated: without a bound, 40 add_mass steps and a 44-mass chain); the seeded long run has none
+MACHINE_MAX_MASSES = 8
+#: headlines kept by the driver, by profile text (undo, redo and the round trips revisit profiles)
+HEADLINE_CACHE = 64
 
 
 def profile_json(profile: Any) -> str:
@@ -76,6 +83,7 @@ class GuiDriver:
         self.win.show()
         self.steps = 0
         self.saves = 0
+        self._headlines: dict[str, Headline] = {}
         self.pump()
         self.start = profile_json(self.win.model.profile)
         self._restart_history()
@@ -239,10 +247,21 @@ class GuiDriver:
             if value is not None:
                 assert f.spin.value() == value, (key, f.spin.value(), value)
 
+    def headline(self) -> Headline:
+        """The headline that :mod:`analysis.study` computes from the model's profile, computed once
+        per distinct profile (keyed by its exact text: equal text, equal profile, equal headline)."""
+        key = profile_json(self.win.model.profile)
+        h = self._headlines.get(key)
+        if h is None:
+            if len(self._headlines) >= HEADLINE_CACHE:
+                del self._headlines[next(iter(self._headlines))]
+            h = self._headlines[key] = Headline.from_result(stability(self.win.model.profile))
+        return h
+
     def check_verdict(self) -> None:
         w = self.win
         w.refresh_visible()  # what the coalesced refresh does at the next turn of the event loop
-        h = Headline.from_result(stability(w.model.profile))
+        h = self.headline()
         for attr, key in VERDICT_KEYS.items():
             assert getattr(w.verdict, attr).text() == h.text(key, rich=True), (attr, key)
 
@@ -307,6 +326,7 @@ def machine_class(folder: Path) -> type[RuleBasedStateMachine]:
         def switch_display(self, name: str) -> None:
             self.driver.switch_display(name)
 
+        @precondition(lambda self: self.driver.win.model.device.n < MACHINE_MAX_MASSES)
         @rule()
         def add_mass(self) -> None:
             self.driver.add_mass()
@@ -338,11 +358,24 @@ def machine_class(folder: Path) -> type[RuleBasedStateMachine]:
     return WindowMachine
 
 
-def test_random_use_keeps_the_window_consistent(qapp, tmp_path):
-    machine = machine_class(tmp_path)
-    run_state_machine_as_test(machine, settings=settings(
-        max_examples=4, stateful_step_count=50, derandomize=True, deadline=None, database=None,
+def run_machine(folder: Path, examples: int, steps: int) -> None:
+    """Run the hypothesis machine, seeded: ``examples`` runs of at most ``steps`` steps each."""
+    run_state_machine_as_test(machine_class(folder), settings=settings(
+        max_examples=examples, stateful_step_count=steps, derandomize=True, deadline=None, database=None,
         suppress_health_check=list(HealthCheck)))
+
+
+def test_random_use_keeps_the_window_consistent(qapp, tmp_path):
+    """``make test``'s run: 4 x 50 seeded steps.  Hypothesis tries its simplest examples first
+    (one rule repeated: add_mass up to :data:`MACHINE_MAX_MASSES`, then redo; 50 drags); the
+    others mix the actions, and between them every rule runs (counted when this was sized)."""
+    run_machine(tmp_path, 4, 50)
+
+
+@pytest.mark.slow
+def test_longer_random_use_keeps_the_window_consistent(qapp, tmp_path):
+    """The slow tier's run of the same machine: 12 x 60 seeded steps (about 600 mixed ones)."""
+    run_machine(tmp_path, 12, 60)
 
 
 @pytest.mark.slow
@@ -390,5 +423,4 @@ def test_undo_history_is_bounded(qapp, tmp_path):
 
 
 if __name__ == "__main__":  # a quick manual run
-    run_state_machine_as_test(machine_class(Path(tempfile.mkdtemp())), settings=settings(
-        max_examples=2, stateful_step_count=20, derandomize=True, deadline=None, database=None))
+    run_machine(Path(tempfile.mkdtemp()), 2, 20)
