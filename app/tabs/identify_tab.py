@@ -43,6 +43,8 @@ class IdentifyTab(AnalysisTab):
     title = "Identify"
     order = 50
     nodes = frozenset(NODES)
+    on_demand_nodes = frozenset({FIT_NODE})  # runs when Fit is pressed: an export never waits for it
+    export_hint = "run a fit first"  # why an export before a fit has nothing (app.window.exports)
     fitted = Signal()  # a fit result is shown
 
     @classmethod

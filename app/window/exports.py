@@ -57,10 +57,10 @@ def default_export_name(view: PlotView, fmt: str, window: Any = None) -> str:
     """``stability_and_z-width-impedance_range_z-width.png``: the tab's and the plot's titles as
     one safe file stem (:func:`file_stem`), so no two plots of the window share a default name
     (two plots of one tab with one title are told apart as the export menu does)."""
-    for tab in getattr(window, "analysis_tabs", []):
-        if tab.is_built() and view in tab.views():
-            name = next(n for n, v in tab_export_entries(tab) if v is view)
-            return f"{file_stem(tab.title)}-{file_stem(name)}.{fmt}"
+    tab = _tab_of(window, view)
+    if tab is not None:
+        name = next(n for n, v in tab_export_entries(tab) if v is view)
+        return f"{file_stem(tab.title)}-{file_stem(name)}.{fmt}"
     return f"{file_stem(view.title)}.{fmt}"
 
 
@@ -70,8 +70,21 @@ def has_content(view: PlotView) -> bool:
 
 
 def _pending(window: Any, tab: Any) -> list[str]:
+    """The tab's asynchronous nodes without a fresh value that an export computes and waits for.
+
+    Not the nodes that run only when the user asks (a tab's ``on_demand_nodes``: the
+    identification fit runs when Fit is pressed, on the measurements loaded): requesting one
+    would compute nothing, and waiting for it would never end.
+    """
     graph = window.graph
-    return [n for n in sorted(tab.nodes) if n in graph and graph.node(n).asynchronous and not graph.is_fresh(n)]
+    skip = getattr(tab, "on_demand_nodes", frozenset())
+    return [n for n in sorted(tab.nodes) if n in graph and n not in skip and graph.node(n).asynchronous
+            and not graph.is_fresh(n)]
+
+
+def _tab_of(window: Any, view: PlotView) -> Any:
+    """The built tab that shows ``view`` (None if none: the tabs not built yet are not searched)."""
+    return next((t for t in getattr(window, "analysis_tabs", []) if t.is_built() and view in t.views()), None)
 
 
 def _wait_for(window: Any, names: list[str], title: str) -> str | None:
@@ -85,7 +98,9 @@ def _wait_for(window: Any, names: list[str], title: str) -> str | None:
     loop = QEventLoop()
 
     def check(*_args: object) -> None:
-        if dialog.wasCanceled() or failures or all(graph.is_fresh(n) for n in names):
+        # a node neither fresh nor computing any more (dropped, superseded) would never arrive
+        if dialog.wasCanceled() or failures or all(graph.is_fresh(n) or not graph.runner.is_running(n)
+                                                   for n in names):
             loop.quit()
 
     def failed(name: str, message: str) -> None:
@@ -98,10 +113,14 @@ def _wait_for(window: Any, names: list[str], title: str) -> str | None:
     connections = [(graph.ready, check), (graph.failed, failed), (graph.cancelled, check), (dialog.canceled, check)]
     for signal, slot in connections:
         signal.connect(slot)
+    poll = QTimer(dialog)  # a job dropped without a signal still ends the wait
+    poll.timeout.connect(check)
+    poll.start(250)
     QTimer.singleShot(0, check)
     try:
         loop.exec()
     finally:
+        poll.stop()
         for signal, slot in connections:
             signal.disconnect(slot)
         cancelled = dialog.wasCanceled()
@@ -109,13 +128,15 @@ def _wait_for(window: Any, names: list[str], title: str) -> str | None:
         dialog.deleteLater()
     if failures:
         return "; ".join(f"{n} failed: {m}" for n, m in failures.items())
-    return "cancelled while computing" if cancelled else None
+    if cancelled:
+        return "cancelled while computing"
+    stopped = [n for n in names if not graph.is_fresh(n)]
+    return f"{', '.join(stopped)} stopped before it finished" if stopped else None
 
 
 def bring_up_to_date(window: Any, view: PlotView) -> str | None:
     """Compute what ``view`` shows (its tab's graph nodes) and refresh its tab; the reason if it cannot."""
-    # a view exists only once its tab is built: the tabs not built yet are not searched (nor built)
-    tab = next((t for t in getattr(window, "analysis_tabs", []) if t.is_built() and view in t.views()), None)
+    tab = _tab_of(window, view)  # a view exists only once its tab is built
     if tab is None:
         return None
     pending = _pending(window, tab)
@@ -123,7 +144,7 @@ def bring_up_to_date(window: Any, view: PlotView) -> str | None:
         tab.refresh()  # sets the tab's node parameters (e.g. the map's axes) and pulls the nodes
         pending = _pending(window, tab)
         if pending:
-            reason = _wait_for(window, pending, view.title.split(":")[0])
+            reason = _wait_for(window, pending, plain_title(view.title.split(":")[0]))
             if reason:
                 return reason
         tab.refresh()
@@ -139,10 +160,13 @@ def export_view(window: QMainWindow, settings: Settings, view: PlotView, fmt: st
     if fmt not in _WRITERS:
         raise ValueError(f"unknown export format {fmt!r}")
     reason = bring_up_to_date(window, view)
-    if reason is None and not has_content(view):
-        reason = "the plot has no data yet"
+    if reason is None and not has_content(view):  # at once: nothing is computing that would fill it
+        tab = _tab_of(window, view)
+        hint = getattr(tab, "export_hint", "")
+        reason = f"nothing to export yet: {hint}" if hint else "nothing to export yet: the plot has no data"
     if reason is not None:
-        QMessageBox.warning(window, "Nothing exported", f"{view.title.split(':')[0]} was not exported: {reason}.")
+        name = plain_title(view.title.split(":")[0])
+        QMessageBox.warning(window, "Nothing exported", f"{name} was not exported: {reason}.")
         return False
     if path is None:
         start = os.path.join(settings.last_directory(), default_export_name(view, fmt, window))

@@ -185,3 +185,24 @@ def test_default_export_names_are_valid_everywhere_and_unique(win, tmp_path, mon
     assert not win.export_view(view, "csv")
     assert asked and os.path.basename(asked[0]) == default_export_name(view, "csv", win)
     assert "|" not in asked[0] and "<" not in asked[0]
+
+
+@pytest.mark.parametrize("opened", [False, True])
+def test_identify_export_before_a_fit_is_refused_at_once(win, qtbot, tmp_path, monkeypatch, opened):
+    from app.core.nodes_identify import FIT_NODE
+    from app.tabs.identify_tab import IdentifyTab
+
+    shown = []
+    monkeypatch.setattr(QMessageBox, "warning", lambda *a, **k: shown.append(a[2]))
+    tab = win.tab(IdentifyTab)
+    if opened:
+        win.tabs.setCurrentWidget(tab)
+        qtbot.waitUntil(lambda: not tab.stale, timeout=10000)
+    for view in tab.plot_views():
+        path = tmp_path / "magnitude.csv"
+        assert not win.export_view(view, "csv", str(path))
+        assert not path.exists()
+    assert not win.graph.runner.is_running(FIT_NODE) and win.graph.calls(FIT_NODE) == 0  # nothing started
+    assert len(shown) == 3
+    assert all(text.endswith("was not exported: nothing to export yet: run a fit first.") for text in shown), shown
+    assert shown[0].startswith("Magnitude")
