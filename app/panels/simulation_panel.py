@@ -96,7 +96,7 @@ class PassivityControls(QGroupBox):
     two check boxes and the PC damping cap (``max_damping``, a field of the panel)."""
 
     def __init__(self, edit_options: Callable[..., str | None], max_damping: QLineEdit) -> None:
-        super().__init__("Passivity control (Hannaford & Ryu, simulation only)")
+        super().__init__("Passivity control (Hannaford && Ryu, simulation only)")
         self.max_damping = max_damping
         self.po = QCheckBox("passivity observer (energy into the virtual environment)")
         self.po.setToolTip("Records the energy flowing into the virtual environment port from the sampled "

@@ -16,6 +16,7 @@ from analysis.study import IMPEDANCE, ChartResult, DisplayKind, display_kind
 from app.views.pickable import PickablePlotView
 from app.views.base import Series, clean_xy, mark_design_point, plain
 from app.views.floor_fill import FloorFill
+from app.views.legend_row import swatch
 from app.views.placement import CenterMessage, LegendPlacer
 
 __all__ = ["DesignChart"]
@@ -37,8 +38,7 @@ class DesignChart(PickablePlotView):
                                      symbolPen=pg.mkPen("w", width=1.5), name="current gains")
         self.point.setZValue(20)
         self.plot.addItem(self.point)
-        self.legend_fill = pg.PlotDataItem([], [], pen=None, symbol="s", symbolSize=12,
-                                           symbolBrush=(43, 138, 62, 90), symbolPen=None)
+        self.legend_fill = swatch(self.fill.brush())  # the shading's own green, not a slate square
         self.legend.addItem(self.legend_fill, "feasible (unconditionally stable)")
         # keeps the requested b_c (m_c) range on the axes when nothing is feasible (invisible)
         self.span = self.plot.plot([], [], pen=pg.mkPen((0, 0, 0, 0)))

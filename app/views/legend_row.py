@@ -8,12 +8,44 @@ scene beyond the widget and cut the plot on the right).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 import pyqtgraph as pg
 from PySide6.QtCore import QObject, QTimer
+from PySide6.QtWidgets import QGraphicsItem
 
-__all__ = ["BelowLegend", "LegendRow"]
+__all__ = ["BelowLegend", "LegendRow", "swatch", "set_swatch_brush", "sync_legend"]
+
+
+def swatch(brush: object, symbol: str = "s", size: float = 12) -> pg.PlotDataItem:
+    """A legend-only sample (no points) showing a shading's ``brush``: add it with ``legend.addItem``."""
+    item = pg.PlotDataItem([], [], pen=None, symbol=symbol, symbolSize=size, symbolBrush=brush, symbolPen=None)
+    set_swatch_brush(item, brush)
+    return item
+
+
+def set_swatch_brush(item: pg.PlotDataItem, brush: object) -> None:
+    """Colour a :func:`swatch` (also after a theme change).
+
+    pyqtgraph's legend sample draws the item's scatter's default brush and pen, which an item
+    without points never receives from ``symbolBrush`` (the swatch was pyqtgraph's slate square
+    with a grey outline, whatever the shading's colour).
+    """
+    item.setSymbolBrush(brush)
+    item.scatter.setBrush(brush, update=False)
+    item.scatter.setPen(pg.mkPen(None), update=False)
+
+
+def sync_legend(legend: pg.LegendItem, entries: Sequence[tuple[QGraphicsItem, str]]) -> None:
+    """Make ``legend`` list exactly ``entries`` (item, text), in this order; nothing is done when
+    it does already.  For items that come and go (a curve with no data hidden would show
+    pyqtgraph's crossed-eye "hidden" icon, an entry for data not loaded would promise it)."""
+    current = [(sample.item, label.text) for sample, label in legend.items]
+    if len(current) == len(entries) and all(a is b and s == t for (a, s), (b, t) in zip(current, entries)):
+        return
+    legend.clear()
+    for item, text in entries:
+        legend.addItem(item, text)
 
 
 class BelowLegend(pg.LegendItem):

@@ -27,6 +27,7 @@ from analysis import StabilityResult
 from analysis.study import display_kind
 
 from app.views.base import PlotView, Series, clean_xy, plain, rich_label
+from app.views.legend_row import set_swatch_brush, swatch
 from app.views.placement import LegendPlacer, densify, scene_points
 
 __all__ = ["StabilityPlot", "negative_runs", "VIEW_MODES", "bound_ratio"]
@@ -99,8 +100,7 @@ class StabilityPlot(PlotView):
         self._limit_span: tuple[float, float] | None = None
         self.set_log(True, False)
         self.set_axis_labels("ω", "rad/s", "Re(1/Z_c)", "m/(N·s)")
-        self.legend_region = pg.PlotDataItem([], [], pen=None, symbol="s", symbolSize=12,
-                                             symbolBrush=self._bad_brush, symbolPen=None)
+        self.legend_region = swatch(self._bad_brush)  # the shading's pink, not a slate square
         self.legend_placer = LegendPlacer(self, rects=self._label_rects)
         self.plot.getViewBox().sigRangeChanged.connect(lambda *_: self.place_label())
         self._show_items()
@@ -287,7 +287,7 @@ class StabilityPlot(PlotView):
         self._bad_brush = pal["bad"]
         for r in self._regions:
             r.setBrush(pg.mkBrush(pal["bad"]))
-        self.legend_region.setSymbolBrush(pal["bad"])
+        set_swatch_brush(self.legend_region, pal["bad"])
         self.worst_line.setPen(pg.mkPen(pal["mark"], width=1, style=Qt.PenStyle.DotLine))
         self.worst_line.label.setColor(pal["mark"])
         self.worst_point.setBrush(pg.mkBrush(pal["mark"]))

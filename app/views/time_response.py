@@ -19,6 +19,7 @@ from analysis.sampled import SimulationResult, Verdict
 from analysis.study.quantities import format_number
 
 from app.views.base import PlotView, Series, clean_xy, plain
+from app.views.legend_row import sync_legend
 
 __all__ = ["TimePlot", "TimeResponse", "verdict_text", "VERDICT_COLORS"]
 
@@ -98,6 +99,9 @@ class TimePlot(PlotView):
                 dropped += bad
                 item.setData(x, yy)
                 item.setVisible(True)
+        # only the curves drawn: a hidden one (no PO without the observer) would show a crossed-eye icon
+        sync_legend(self.legend, [(item, _SHORT.get(name, name)) for name, item in self.curves.items()
+                                  if item.isVisible()])
         self.dropped = dropped
         if dropped and not self.warning_text:
             self.set_warning([f"{dropped} non-finite or out-of-range samples (the run diverged) are not drawn; "

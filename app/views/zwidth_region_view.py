@@ -20,6 +20,7 @@ from analysis.study.quantities import format_number, superscript_numbers
 from app.views.pickable import PickablePlotView
 from app.views.base import Series, clean_xy, mark_design_point
 from app.views.floor_fill import FloorFill
+from app.views.legend_row import sync_legend
 
 __all__ = ["ZWidthRegionView", "B_LABEL", "K_LABEL"]
 
@@ -55,6 +56,7 @@ class ZWidthRegionView(PickablePlotView):
             item.setZValue(10 + z)
             self.plot.addItem(item)
         self.legend_outside(3)
+        self._sync_legend()  # no trial entries before trials are loaded
         self.region: ZWidthRegion | None = None
         self.score: TrialScore | None = None
         self.trials: MeasuredTrials | None = None
@@ -115,6 +117,7 @@ class ZWidthRegionView(PickablePlotView):
         if trials is None:
             for item in (self.stable_trials, self.unstable_trials, self.wrong):
                 item.setData([], [])
+            self._sync_legend()
             return
         st = np.asarray(trials.stable, bool)
         ok = (trials.b > 0) & (trials.k > 0)  # log axes
@@ -124,9 +127,17 @@ class ZWidthRegionView(PickablePlotView):
         if score is not None:
             wrong[score.wrong] = True
         self.wrong.setData(trials.b[wrong & ok], trials.k[wrong & ok])
+        self._sync_legend()
         for name, mask in (("trials measured stable", st), ("trials measured unstable", ~st),
                            ("trials predicted wrong", wrong)):
             self._series.append(Series(name, B_LABEL, K_LABEL, trials.b[mask], trials.k[mask]))
+
+    def _sync_legend(self) -> None:
+        """The legend lists the trial markers only when there are such trials to see."""
+        trials = [item for item in (self.stable_trials, self.unstable_trials, self.wrong)
+                  if item.getData()[0] is not None and len(item.getData()[0])]
+        items = [self.exact, self.passive, self.twoport, *trials, self.point]
+        sync_legend(self.legend, [(item, item.opts["name"]) for item in items])
 
     def update_point(self, b: float, k: float, stable: bool | None) -> None:
         """The current wall ``(b_c, k_c)`` (``stable``: inside the region)."""

@@ -223,3 +223,83 @@ def test_zwidth_title_exponents_are_glyphs_not_clipped_sup(qtbot):
     assert "<sup>" not in text
     view.set_busy(True)
     assert "10⁷" in view.header.text() and "updating" in view.header.text()
+
+
+def _sample_colour(legend, index: int) -> tuple[int, int, int]:
+    """The centre pixel of a legend sample painted on white."""
+    from PySide6.QtGui import QColor, QImage, QPainter
+
+    sample = legend.items[index][0]
+    image = QImage(24, 24, QImage.Format.Format_ARGB32)
+    image.fill(QColor("white"))
+    painter = QPainter(image)
+    sample.paint(painter, None, None)
+    painter.end()
+    c = QColor(image.pixel(10, 10))
+    return c.red(), c.green(), c.blue()
+
+
+def test_shading_swatches_have_the_shadings_colours(qtbot, chart):
+    """The "feasible" and "margin < 0" swatches were pyqtgraph's slate squares."""
+    from app.views.stability_plot import StabilityPlot
+
+    texts = _legend_texts(chart)
+    r, g, b = _sample_colour(chart.legend, texts.index("feasible (unconditionally stable)"))
+    assert g > r + 8 and g > b + 8  # green, like the shading
+    view = StabilityPlot()
+    qtbot.addWidget(view)
+    for dark in (False, True):
+        view.apply_theme(dark)
+        r, g, b = _sample_colour(view.legend, _legend_texts(view).index("margin &lt; 0"))
+        assert r > g + 8 and r > b + 8  # pink, like the shading
+
+
+def test_time_plot_lists_only_the_curves_it_draws(qtbot):
+    """Without the passivity observer there is no PO curve: no legend entry (it showed pyqtgraph's
+    crossed-eye "hidden" icon), and it comes back with the observer."""
+    from app.views.time_response import TimeResponse
+
+    view = TimeResponse()
+    qtbot.addWidget(view)
+    energy = view.energy
+    t = np.linspace(0.0, 1.0, 50)
+    base = {"absorbed by controller": t, "observed (encoder)": t, "work of the human": t}
+    energy.set_series(t, {**base, "PO (environment port)": None})
+    assert all(sample.item.isVisible() for sample, _label in energy.legend.items)
+    assert not any("PO" in text for text in _legend_texts(energy)) and len(energy.legend.items) == 3
+    energy.set_series(t, {**base, "PO (environment port)": -t})
+    assert _legend_texts(energy)[-1] == "PO" and len(energy.legend.items) == 4
+    assert all(sample.item.isVisible() for sample, _label in energy.legend.items)
+
+
+def test_zwidth_legend_lists_trials_only_when_loaded(qtbot):
+    from analysis.sampled import MeasuredTrials
+    from app.views.zwidth_region_view import ZWidthRegionView
+
+    view = ZWidthRegionView()
+    qtbot.addWidget(view)
+    view.update_region(_synthetic_region())
+    texts = _legend_texts(view)
+    assert not any("trial" in t for t in texts) and texts[-1].startswith("current wall")
+    assert len(texts) == 4
+    trials = MeasuredTrials(path="t.csv", b=np.array([1.0, 10.0]), k=np.array([1e3, 1e7]),
+                            stable=np.array([True, False]), lines=np.array([2, 3]))
+    view.update_region(_synthetic_region(), trials)
+    texts = _legend_texts(view)
+    assert "trial: stable" in texts and "trial: unstable" in texts and texts[-1].startswith("current wall")
+    view.update_region(_synthetic_region())
+    assert not any("trial" in t for t in _legend_texts(view))
+
+
+def test_group_titles_show_an_ampersand_not_a_mnemonic(qtbot):
+    """"Hannaford & Ryu" showed as "Hannaford _Ryu": Qt took the & for a shortcut mark."""
+    from PySide6.QtGui import QKeySequence
+    from PySide6.QtWidgets import QGroupBox, QLineEdit
+
+    from app.panels.simulation_panel import PassivityControls
+
+    box = PassivityControls(lambda *a, **k: None, QLineEdit())
+    qtbot.addWidget(box)
+    assert "Hannaford && Ryu" in box.title()
+    assert QKeySequence.mnemonic(box.title()).isEmpty()  # no shortcut: the & is drawn
+    assert isinstance(box, QGroupBox)
