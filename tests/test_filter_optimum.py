@@ -113,3 +113,32 @@ def test_optimum_request_carries_the_current_filter():
     assert req.current == F20 and req.region.velocity_filter is None
     assert study.OptimumRequest.of(_profile("rigid")).current is None
     assert dataclasses.replace(req, current=None) != req  # a new filter is a new request
+
+
+def test_a_new_cutoff_costs_one_region_not_the_sweep(monkeypatch):
+    """The sweep does not depend on the profile's own filter: a new cut-off computes one region
+    (counted), and its area is the one a fresh sweep gives."""
+    from analysis.sampled import filter_optimum as module
+
+    calls = []
+    real = module.noise_limited_stiffness
+
+    def counted(*args, **kwargs):
+        calls.append(1)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(module, "noise_limited_stiffness", counted)
+    cut = 2 * math.pi * np.geomspace(7.0, 300.0, 4)  # this test's own grid: the first call sweeps
+    p = _profile("rigid", F20)
+    first = study.filter_optimum(p, cutoffs=cut)
+    swept = len(calls)
+    assert swept >= cut.size + 2 and first.current == F20
+    g = VelocityFilter("lowpass1", 2 * math.pi * 35.0)
+    second = study.filter_optimum(p.replace(controller=p.controller.replace(velocity_filter=g)), cutoffs=cut)
+    assert len(calls) == swept + 1
+    assert second.current == g and second.cutoff == first.cutoff and second.backward_area == first.backward_area
+    d, impl = study.delays(p)
+    fresh = optimal_filter(p.device, "lowpass1", cut, b=study.region_b(p), delay_samples=d,
+                           implementation_delay=impl, current=g)
+    assert second.current_area == pytest.approx(fresh.current_area, rel=1e-12)
+    assert second.area == pytest.approx(fresh.area, rel=1e-12)

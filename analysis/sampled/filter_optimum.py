@@ -43,7 +43,7 @@ from analysis.progress import Cancelled, Progress, check_cancelled, none_if_canc
 from analysis.sampled.velocity_noise import DEFAULT_FORCE_NOISE, noise_limited_damping
 from analysis.sampled.zwidth import OPTIMIZER_AREA, check_b_values, noise_limited_stiffness, region_area
 
-__all__ = ["FilterOptimum", "optimal_filter", "IMPROVEMENT_RTOL"]
+__all__ = ["FilterOptimum", "optimal_filter", "filter_area", "IMPROVEMENT_RTOL"]
 
 _AREAS = ("area_linear", "area_log")
 #: The relative margin by which a design must beat another to be called better: ten times the
@@ -220,10 +220,9 @@ def optimal_filter(device: Device, kind: str = "lowpass1", cutoffs: np.ndarray |
     noise_limited_damping(None, device.sample_time, encoder_resolution, force_noise)  # validate once
 
     def area(vf: VelocityFilter | None) -> float:
-        bn = noise_limited_damping(vf, device.sample_time, encoder_resolution, force_noise)
-        k = noise_limited_stiffness(device, bs, bn, delay_samples, vf, k_range=k_range, per_decade=per_decade,
-                                    rtol=1e-5, **region_options)
-        return region_area(bs, k, k_range[0], k_range[1])[_AREAS.index(measure)]
+        return filter_area(device, vf, b=bs, delay_samples=delay_samples, measure=measure, k_range=k_range,
+                           per_decade=per_decade, encoder_resolution=encoder_resolution, force_noise=force_noise,
+                           **region_options)
 
     def cut_area(cutoff: float) -> float:
         return area(VelocityFilter(kind, cutoff))
@@ -243,6 +242,51 @@ def optimal_filter(device: Device, kind: str = "lowpass1", cutoffs: np.ndarray |
     return FilterOptimum(kind=kind, cutoffs=cs, areas=areas, cutoff=best[0], area=best[1], backward_area=back,
                          measure=measure, encoder_resolution=None if encoder_resolution is None
                          else float(encoder_resolution), force_noise=fn, current=current, current_area=now)
+
+
+def filter_area(device: Device, velocity_filter: VelocityFilter | None, *, b: np.ndarray | None = None,
+                delay_samples: int = 0, measure: str = OPTIMIZER_AREA, k_range: tuple[float, float] = (1.0, 1e9),
+                per_decade: int = 12, encoder_resolution: float | None = None, force_noise: float | None = None,
+                **region_options) -> float:
+    """The criterion of :func:`optimal_filter` for one velocity filter: the (noise-limited) area.
+
+    The one computation behind every area of a :class:`FilterOptimum` (the curve, the optimum, no
+    filter and the current filter), so that areas computed apart compare exactly.
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    velocity_filter : VelocityFilter or None
+        The velocity estimate's filter; ``None`` for the backward difference.
+    b : numpy.ndarray or None, optional
+        Wall dampings B [N s/m]; ``None`` for :data:`~analysis.sampled.zwidth.DEFAULT_B`.
+    delay_samples : int, optional
+        Computation delay in samples.
+    measure : str, optional
+        ``"area_linear"`` [N^2 s/m^2] or ``"area_log"`` [decades^2].
+    k_range : tuple of (float, float), optional
+        The scanned K [N/m], ``(low, high)``.
+    per_decade : int, optional
+        The K scan resolution [points per decade].
+    encoder_resolution : float or None, optional
+        Encoder resolution [m] of the noise criterion; ``None`` turns it off.
+    force_noise : float or None, optional
+        Force-noise tolerance [N rms]; ``None`` for 0.1 (only with ``encoder_resolution``).
+    **region_options
+        Keyword arguments of :func:`~analysis.sampled.zwidth.stiffness_limits`.
+
+    Returns
+    -------
+    float
+        The area, in the unit of ``measure``.
+    """
+    choice("measure", measure, _AREAS, allowed=" or ".join(_AREAS))
+    bs = check_b_values(b)
+    bn = noise_limited_damping(velocity_filter, device.sample_time, encoder_resolution, force_noise)
+    k = noise_limited_stiffness(device, bs, bn, delay_samples, velocity_filter, k_range=k_range,
+                                per_decade=per_decade, rtol=1e-5, **region_options)
+    return region_area(bs, k, k_range[0], k_range[1])[_AREAS.index(measure)]
 
 
 def _cutoffs(kind: str, cutoffs: np.ndarray | None, T: float) -> np.ndarray:

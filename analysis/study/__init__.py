@@ -88,16 +88,11 @@ from .citations import REFERENCES, Reference, citation_text
 from .labels import HOLD_LABELS, PARAMETER_LABELS, PLANT_LABELS, SCENARIO_TIPS, SCENARIO_TITLES, scenario_title
 from .summary import SUMMARY_VERSION, design_summary, format_design, format_summary, summarize
 from .zwidth import (
-    OPTIMUM_CUTOFFS,
-    OptimumRequest,
     TrialsRequest,
     ZWidthRequest,
     ZWidthStudy,
     controller_section,
-    filter_optimum,
     noise_options,
-    optimum_kind,
-    optimum_verdict,
     profile_trials,
     region_b,
     resolve_trials,
@@ -110,6 +105,7 @@ from .zwidth import (
     zwidth_region,
     zwidth_region_result,
 )
+from .optimum import OPTIMUM_CUTOFFS, OptimumRequest, filter_optimum, optimum_kind, optimum_verdict
 from .identify import (
     BodeData,
     IdentifyResult,
