@@ -78,6 +78,23 @@ def win(qtbot, settings, hbfd_profile):
     yield from _main_window(qtbot, settings, hbfd_profile)
 
 
+#: the B grid of :func:`zwidth_win` (the default section's has 100 points)
+COARSE_B_POINTS = 25
+
+
+@pytest.fixture
+def zwidth_win(qtbot, settings, hbfd_profile):
+    """The main window on the HBFD preset with a controller section on a coarse B grid
+    (:data:`COARSE_B_POINTS` points, the default filter and B range): the Z-width region costs a
+    quarter of the default's.  For tests of how the region follows edits, not of its resolution;
+    the default section (``controller`` None) and its grid are drawn by the tests that go through
+    every tab."""
+    from analysis.profiles import ControllerSection
+
+    profile = hbfd_profile.replace(controller=ControllerSection(b_points=COARSE_B_POINTS))
+    yield from _main_window(qtbot, settings, profile)
+
+
 @pytest.fixture
 def eom_win(qtbot, settings):
     """The real main window on the Eom, Suh & Yi preset (wall and observer sections)."""

@@ -24,10 +24,13 @@ def show(win, qtbot) -> ZWidthTab:
     return tab
 
 
-def test_filter_kind_in_the_panel_recomputes_the_region_and_undo_restores(win, qtbot):
+def test_filter_kind_in_the_panel_recomputes_the_region_and_undo_restores(zwidth_win, qtbot):
+    win = zwidth_win
     tab = show(win, qtbot)
     before = tab.region_view.region
-    assert before.velocity_filter.is_backward and win.model.profile.controller is None
+    section = win.model.profile.controller
+    assert before.velocity_filter.is_backward and section.velocity_filter.is_backward
+    assert len(before.b) == section.b_points < 100  # the coarse grid of the zwidth_win fixture
     calls = win.graph.calls(REGION_NODE)
     fp = win.panel.filter_panel
     assert not fp.cutoff.isEnabled()
@@ -44,7 +47,7 @@ def test_filter_kind_in_the_panel_recomputes_the_region_and_undo_restores(win, q
     assert win.model.profile.controller.velocity_filter.cutoff == pytest.approx(2 * math.pi * 45.0)
     win.undo_stack.undo()
     win.undo_stack.undo()
-    assert win.model.profile.controller is None
+    assert win.model.profile.controller == section
     qtbot.waitUntil(lambda: tab.region_view.region.velocity_filter.is_backward and win.graph.is_fresh(REGION_NODE),
                     timeout=60000)
     np.testing.assert_array_equal(tab.region_view.region.k_max, before.k_max)
@@ -60,7 +63,8 @@ def test_cutoff_above_nyquist_is_refused_with_the_reason(win, qtbot):
     assert win.model.profile.controller.velocity_filter.kind == "butter2"
 
 
-def test_clicking_the_region_sets_the_wall_in_one_undo_step(win, qtbot):
+def test_clicking_the_region_sets_the_wall_in_one_undo_step(zwidth_win, qtbot):
+    win = zwidth_win
     tab = show(win, qtbot)
     qtbot.wait(50)
     view = tab.region_view
@@ -120,13 +124,15 @@ def test_passivity_control_options_in_the_sampled_data_controls(win, qtbot):
     assert win.model.profile.simulation is None or not win.model.profile.simulation.options.passivity_control
 
 
-def test_encoder_noise_fields_limit_the_region_in_one_undo_step(win, qtbot):
+def test_encoder_noise_fields_limit_the_region_in_one_undo_step(zwidth_win, qtbot):
     """The noise criterion from the tab: one undo step, the region recomputed with ``b_noise``
     = F/σ_v (the analysis' own), and undo switches it off again."""
     from analysis.sampled import estimate_noise
     from analysis.study import profile_filter
 
+    win = zwidth_win
     tab = show(win, qtbot)
+    section = win.model.profile.controller
     before = tab.region_view.region
     assert math.isinf(before.b_noise) and not tab.noise_box.isChecked() and not tab.encoder.isEnabled()
     depth = win.undo_stack.index()
@@ -144,7 +150,7 @@ def test_encoder_noise_fields_limit_the_region_in_one_undo_step(win, qtbot):
     assert tab.set_noise(-1.0, 0.1) is not None  # refused with the range, nothing changed
     assert win.model.profile.controller.encoder_resolution == 1e-5
     win.undo_stack.undo()
-    assert win.model.profile.controller is None
+    assert win.model.profile.controller == section
     qtbot.waitUntil(lambda: math.isinf(tab.region_view.region.b_noise) and win.graph.is_fresh(REGION_NODE),
                     timeout=60000)
     assert not tab.noise_box.isChecked()
@@ -164,12 +170,13 @@ def _fresh_optimum(win, qtbot, tab):
     return tab.optimum_view.optimum
 
 
-def test_optimum_button_is_disabled_without_noise_and_removes_a_filter(win, qtbot):
+def test_optimum_button_is_disabled_without_noise_and_removes_a_filter(zwidth_win, qtbot):
     """Issue 22: on the HBFD without encoder noise no cut-off beats the unfiltered design, so
     "Use the optimum cut-off" is disabled (the verdict says why); with a filter set it offers to
     remove it, in one undo step."""
     from app.tabs.zwidth_tab import APPLY_TEXT
 
+    win = zwidth_win
     tab = show(win, qtbot)
     assert tab.section.write("b_points", 10, "B points") is None  # a coarse B grid: a quick optimum
     opt = _fresh_optimum(win, qtbot, tab)
@@ -189,9 +196,10 @@ def test_optimum_button_is_disabled_without_noise_and_removes_a_filter(win, qtbo
     assert win.undo_stack.index() == depth + 1 and win.model.profile.controller.velocity_filter.is_backward
 
 
-def test_optimum_button_offers_the_interior_optimum_with_noise(win, qtbot):
+def test_optimum_button_offers_the_interior_optimum_with_noise(zwidth_win, qtbot):
     """With the encoder-noise criterion the noise-limited area has an interior optimum: offered,
     applied in one undo step, and then nothing more is offered."""
+    win = zwidth_win
     tab = show(win, qtbot)
     assert tab.section.write_many({"b_points": 10, "encoder_resolution": 1e-5}, "noise") is None
     opt = _fresh_optimum(win, qtbot, tab)
