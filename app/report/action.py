@@ -9,11 +9,23 @@ from app import qt_compat  # noqa: F401 - before any Qt call
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QApplication, QFileDialog, QMessageBox, QProgressDialog, QWidget
 
+from analysis.profiles.io import bundled_profiles
 from analysis.progress import OperationCancelled
 
 from app.report import REPORT_FORMATS, build_report, report_format, report_stages
 
-__all__ = ["export_report"]
+__all__ = ["export_report", "document_path"]
+
+
+def document_path(window: QWidget) -> str | None:
+    """The file of the window's document, for the report's File row: the file it was opened from or
+    saved to, the bundled file of a preset (``window.preset``), ``None`` for a new document."""
+    path = getattr(window, "path", None)
+    if isinstance(path, str) and path:
+        return path
+    preset = getattr(window, "preset", None)
+    bundled = bundled_profiles().get(preset) if isinstance(preset, str) else None
+    return str(bundled) if bundled is not None else None
 
 
 def export_report(window: QWidget, path: str | None = None, page_size: str = "a4") -> bool:
@@ -22,7 +34,7 @@ def export_report(window: QWidget, path: str | None = None, page_size: str = "a4
     The format comes from the extension (.pdf or .html); progress is shown while it builds.
     """
     profile = window.model.profile
-    source = getattr(window, "path", None) or getattr(window, "_path", None)
+    source = document_path(window)
     if path is None:
         stem = "".join(ch if ch.isalnum() or ch in "-_" else "-" for ch in profile.name).strip("-") or "report"
         path, _ = QFileDialog.getSaveFileName(window, "Export Report", f"{stem}-report.pdf",
@@ -45,8 +57,7 @@ def export_report(window: QWidget, path: str | None = None, page_size: str = "a4
         QApplication.processEvents()  # the Cancel click arrives here; cancelled() reads it
 
     try:
-        build_report(profile, path, page_size=page_size, source=source if isinstance(source, str) else None,
-                     progress=progress, cancelled=dlg.wasCanceled)
+        build_report(profile, path, page_size=page_size, source=source, progress=progress, cancelled=dlg.wasCanceled)
     except OperationCancelled:
         return False
     except Exception as err:  # noqa: BLE001 - shown to the user, never a crash of the app
