@@ -62,9 +62,11 @@ def _canon(text: str) -> str:
 
 
 def _expected_pages(profile) -> int:
-    # 2 pages of text, then 2 figures a page, methods sharing the last figure page when it fits
-    n_figs = 4 + (3 if profile.wall is not None else 0) + (3 if profile.simulation is not None else 0)
-    return {4: 5, 7: 6}[n_figs]
+    # 2 pages of text (3 with the observer's section), then 2 figures a page, methods sharing the last
+    # figure page when it fits
+    n_figs = 4 + (3 if profile.wall is not None else 0) + (3 if profile.simulation is not None else 0) \
+        + (2 if profile.observer is not None else 0)
+    return {4: 5, 7: 6, 9: 8}[n_figs]
 
 
 @pytest.mark.parametrize("name", IDS)

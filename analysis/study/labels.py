@@ -4,7 +4,7 @@ and the report."""
 
 from __future__ import annotations
 
-__all__ = ["PARAMETER_LABELS", "HOLD_LABELS", "PLANT_LABELS", "SCENARIO_TITLES", "SCENARIO_TIPS", "scenario_title"]
+__all__ = ["PARAMETER_LABELS", "HOLD_LABELS", "PLANT_LABELS", "OBSERVER_PRESET_LABELS", "SCENARIO_TITLES", "SCENARIO_TIPS", "scenario_title"]
 
 #: Map and chart parameters: (symbol, unit).
 PARAMETER_LABELS: dict[str, tuple[str, str]] = {
@@ -23,6 +23,9 @@ HOLD_LABELS = {
     "discrete": "exact sampled loop (discrete)",
 }
 PLANT_LABELS = {"rigid": "rigid handle: m, b below", "chain": "the profile's device chain"}
+#: The two-axis five-bar devices of ``ObserverSettings.preset``, for people.
+OBSERVER_PRESET_LABELS = {"five_bar_centre": "five-bar, centre (unequal distal links)",
+                          "five_bar_offset": "five-bar, 60 mm right of centre"}
 
 #: The built-in simulation scenarios (``SimulationSection.scenario.name``), for people.
 SCENARIO_TITLES = {

@@ -13,7 +13,7 @@ import re
 from dataclasses import dataclass, replace
 from typing import Any
 
-__all__ = ["Quantity", "QUANTITIES", "quantity", "format_number", "rich_numbers", "superscript_numbers", "DIGITS"]
+__all__ = ["Quantity", "QUANTITIES", "J_UNIT", "quantity", "format_number", "rich_numbers", "superscript_numbers", "DIGITS"]
 
 #: significant digits of a printed number unless a quantity says otherwise
 DIGITS = 6
@@ -207,6 +207,8 @@ class Quantity:
 
 _RAD_S = "rad/s"
 _NSM = "N·s/m"
+#: unit of the transparency index J (eq. 10-11): the squared H2 norm of an admittance error
+J_UNIT = "m²/(N²·s³)"
 
 #: the headline quantities (``worst_margin``'s unit depends on the display: see :func:`quantity`)
 QUANTITIES: dict[str, Quantity] = {q.key: q for q in (
@@ -234,6 +236,10 @@ QUANTITIES: dict[str, Quantity] = {q.key: q for q in (
     Quantity("min_mc", "smallest stable coupling mass", "m_c,min", "kg"),
     Quantity("min_mc_bc", "with damping", "b_c", _NSM),
     Quantity("min_mc_frequency", "binding frequency", "", _RAD_S),
+    # the wall controller of Eom, Suh & Yi: J = ||w1 (Y_v - Y_t)||_2^2 (eq. 10-11), the squared H2 norm of an
+    # admittance error [m/(N·s)] under a dimensionless weight: [m/(N·s)]^2 times [1/s] of the integral over ω
+    Quantity("transparency_index", "transparency index", "J", J_UNIT),
+    Quantity("robustness_peak", "robustness peak", "‖L‖∞", ""),
 )}
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 from PySide6.QtWidgets import QComboBox, QGridLayout, QGroupBox, QWidget
 
 from analysis.study import observer_settings
+from analysis.study.labels import OBSERVER_PRESET_LABELS
 from analysis.transparency.observer import PRESETS
 
 from app.core.commands import Editor
@@ -20,8 +21,7 @@ from app.widgets.section_binding import SectionBinding
 
 __all__ = ["ObserverPanel", "PRESET_LABELS"]
 
-PRESET_LABELS = {"five_bar_centre": "five-bar, centre (unequal distal links)",
-                 "five_bar_offset": "five-bar, 60 mm right of centre"}
+PRESET_LABELS = OBSERVER_PRESET_LABELS  # the one place: analysis.study.labels
 
 
 class ObserverPanel(QGroupBox):

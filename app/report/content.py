@@ -19,6 +19,10 @@ import numpy as np
 from analysis.profiles import Profile
 from analysis.study import (
     HEADLINE_KEYS,
+    HOLD_LABELS,
+    PLANT_LABELS,
+    QUANTITIES,
+    Quantity,
     Headline,
     citations,
     design_chart,
@@ -44,6 +48,7 @@ from app.report.model import (
     row,
     symbol_html,
 )
+from app.report.observer_section import observer_part
 from app.report.zwidth_section import zwidth_part
 
 __all__ = ["ReportContent", "Section", "Row", "ReportCancelled", "gather", "num", "symbol_html", "app_version",
@@ -78,7 +83,8 @@ METHODS = (
     "&amp; Yi: the transparency index <i>J</i> = &#8214;<i>w</i><sub>1</sub>(<i>Y</i><sub>v</sub> &minus; "
     "<i>Y</i><sub>t</sub>)&#8214;<sub>2</sub><sup>2</sup> (eq. 10&ndash;11) and the robust-stability "
     "condition &#8214;<i>L</i>&#8214;<sub>&infin;</sub> &le; 1 (eq. 13&ndash;17) over the controller damping "
-    "<i>B</i><sub>c</sub>. Where a profile has a <i>simulation</i> section, the exact sampled loop (ZOH, "
+    "<i>B</i><sub>c</sub>; with an <i>observer</i> section, the disturbance observer of the same paper "
+    "(eq. 2&ndash;5) on one axis and on the two axes of a five-bar device. Where a profile has a <i>simulation</i> section, the exact sampled loop (ZOH, "
     "optional delay) gives the spectral-radius stability map (&rho; &lt; 1 is stable) and the nonlinear "
     "time-domain scenario.",
     "<b>References</b>",
@@ -108,6 +114,12 @@ _DESIGN_ROWS = {
 
 
 
+def _unit(value: Any, unit: str) -> str:
+    """The Unit cell of ``value``: its unit (HTML), none after a word ("infeasible", "∞", "n/a")."""
+    q = Quantity("unit", "", "", unit)  # Quantity.format's rule: no unit after a word
+    return html.escape(q.format(value)[len(q.number(value)):].strip())
+
+
 def _device(profile: Profile) -> Part:
     dev = profile.device
     numbers: Numbers = {}
@@ -128,7 +140,7 @@ def _device(profile: Profile) -> Part:
                         f"<i>g</i><sub>{i + 1}</sub>", g, "N&middot;s/m"))
     s = int(dev.sensor_element)
     numbers["device.sensor_element"] = (float(s), str(s + 1))
-    rows.append(Row("force sensor on element", "", str(s + 1), "(1 = next to the handle)"))
+    rows.append(Row("force sensor on element (1 = next to the handle)", "", str(s + 1), ""))
     return Part((Section("Device", ("Masses from the handle (1) to the actuator; element <i>i</i> joins mass "
                                     "<i>i</i> and mass <i>i</i>+1.",), tuple(rows)),), numbers)
 
@@ -157,15 +169,15 @@ def _sampled(profile: Profile) -> Part:
     numbers: Numbers = {}
     stable_share = float(np.mean(smap.spectral_radius <= 1.0))
     rows = (
-        Row("scenario", "", "", html.escape(scenario_title(str(sc.name)))),
+        Row("scenario", "", html.escape(scenario_title(str(sc.name))), ""),
         row(numbers, "simulation.duration", "duration", "", float(out.t[-1]), "s"),
-        Row("verdict", "", html.escape(out.verdict.kind), html.escape(out.verdict.reason)),
+        Row(f"verdict of the scenario ({html.escape(out.verdict.reason)})", "", html.escape(out.verdict.kind), ""),
         row(numbers, "simulation.peak_position", "largest |handle position|", "",
             float(np.max(np.abs(out.positions[:, 0]))) * 1e3, "mm"),
         row(numbers, "simulation.peak_force", "largest |actuator force|", "", float(np.max(np.abs(out.f_d))), "N"),
         row(numbers, "map.stable_share", "stable share of the map", "", 100.0 * stable_share, "%"),
-        Row("delay", "", str(opt.delay_samples), "sample(s)" + (", plus computation delay"
-                                                            if opt.implementation_delay else "")),
+        Row("delay" + (" (plus the computation delay)" if opt.implementation_delay else ""), "",
+            str(opt.delay_samples), "samples"),
     )
     n = params["points"]
     section = Section("Sampled-data checks", (
@@ -189,21 +201,25 @@ def _wall(profile: Profile) -> Part:
     if math.isfinite(best.bc):
         results["step"] = wd.step_response(best.bc)
     numbers: Numbers = {}
+    index, peak = QUANTITIES["transparency_index"], QUANTITIES["robustness_peak"]
     rows = (
         row(numbers, "wall.mass", "device mass", "<i>m</i>", st.mass, "kg"),
         row(numbers, "wall.damping", "device damping", "<i>b</i>", st.damping, "N&middot;s/m"),
         row(numbers, "wall.wall_stiffness", "virtual wall stiffness", "<i>K</i>", st.wall_stiffness, "N/m"),
         row(numbers, "wall.wall_damping", "virtual wall damping", "<i>B</i>", st.wall_damping, "N&middot;s/m"),
-        Row("hold model", "", html.escape(st.hold), ""),
-        row(numbers, "wall.alpha", "uncertainty weight", "&alpha;, &beta;", st.alpha, f"{num(st.beta)}"),
+        row(numbers, "wall.alpha", "uncertainty weight (eq. 13)", "&alpha;", st.alpha, ""),
+        row(numbers, "wall.beta", "uncertainty weight (eq. 13)", "&beta;", st.beta, ""),
         row(numbers, "wall.optimum.bc", "optimal controller damping", "<i>B</i><sub>c</sub>", best.bc, "N&middot;s/m"),
-        row(numbers, "wall.optimum.index", "transparency index at the optimum", "<i>J</i>", best.index, ""),
-        row(numbers, "wall.optimum.peak", "robustness peak at the optimum",
-            "&#8214;<i>L</i>&#8214;<sub>&infin;</sub>", best.peak, ""),
+        row(numbers, "wall.optimum.index", f"{index.name} at the optimum", "<i>J</i>", best.index,
+            _unit(best.index, index.unit)),
+        row(numbers, "wall.optimum.peak", f"{peak.name} at the optimum",
+            "&#8214;<i>L</i>&#8214;<sub>&infin;</sub>", best.peak, _unit(best.peak, peak.unit)),
         row(numbers, "wall.optimum.peak_frequency", "at frequency", "", best.peak_frequency, "rad/s"),
     )
     after = () if best.feasible else (f"No feasible B<sub>c</sub>: {html.escape(best.reason)}",)
-    return Part((Section("Transparency and robust stability (Eom, Suh &amp; Yi)", (), rows, after),), numbers,
+    par = (f"Hold model <i>H</i>: {html.escape(HOLD_LABELS.get(st.hold, st.hold))}. Plant: "
+           f"{html.escape(PLANT_LABELS.get(st.plant, st.plant))}.")
+    return Part((Section("Transparency and robust stability (Eom, Suh &amp; Yi)", (par,), rows, after),), numbers,
                 results)
 
 
@@ -217,14 +233,14 @@ def _headline_part(h: Headline, table: dict[str, tuple[str, str]], keys: tuple[s
             continue
         q, value = h.quantity(key), h.value(key)
         numbers[table[key][0]] = (None if value is None else float(value), q.number(value))
-        rows.append(Row(q.name, table[key][1], q.number(value, rich=True), html.escape(q.unit)))
+        rows.append(Row(q.name, table[key][1], q.number(value, rich=True), _unit(value, q.unit)))
     return Part((Section(title, paragraphs, tuple(rows)),), numbers)
 
 
 def _controller(profile: Profile) -> Part:
     kind = display_kind(profile)
     numbers: Numbers = {}
-    rows = [Row("display type", "", kind.name, f"({kind.causality})")]
+    rows = [Row(f"display type ({kind.causality})", "", kind.name, "")]
     for gain in kind.gains:
         sym = f"<i>{gain.symbol[0]}</i><sub>{gain.symbol[2:]}</sub>"
         rows.append(row(numbers, f"coupling.{gain.symbol.replace('_', '')}", gain.label, sym,
@@ -265,7 +281,7 @@ def gather(profile: Profile, *, source: str | None = None, sampled: bool = True,
         Part(results={"stability": stab, "chart": design_chart(profile), "chart_point": kind.chart_point(profile)}),
         _device(profile), _sampling(profile), _controller(profile), _verdict(h, profile), _designs(h),
         _headline_part(h, _RANGE_ROWS, HEADLINE_KEYS, "Impedance range (Z-width)"),
-        _wall(profile), _sampled(profile) if sampled else Part(),
+        _wall(profile), observer_part(profile), _sampled(profile) if sampled else Part(),
         identification_part(profile),  # issue 14: only with the identification section
         zwidth_part(profile),  # issue 15: only with the controller section
     ]

@@ -21,13 +21,14 @@ from PySide6.QtCore import Qt, qInstallMessageHandler
 from PySide6.QtGui import QFont, QGuiApplication
 from PySide6.QtWidgets import QApplication
 
-from analysis.study import display_kind, scenario_title
+from analysis.study import QUANTITIES, display_kind, rich_numbers, scenario_title
 from app.views.base import PlotView, rich_label
 from app.views.design_chart import DesignChart
 from app.views.range_plot import RangePlot
 from app.views.stability_map import StabilityMapView
 from app.views.stability_plot import StabilityPlot
 from app.report.identify_figures import FIGURE_KEYS as IDENTIFY_FIGURES, identify_figure
+from app.report.observer_figures import FIGURE_KEYS as OBSERVER_FIGURES, observer_figure
 from app.report.model import Figure, ReportContent, num, symbol_html
 from app.report.plots import CurvesPlot
 from app.report.zwidth_figures import FIGURE_KEYS as ZWIDTH_FIGURES, zwidth_figure
@@ -37,6 +38,8 @@ __all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "FI
 
 #: size (px at 96 dpi) the views are laid out at; the PDF scales them to the text width
 FIG_SIZE = (658, 350)
+#: margins (px: left, top, right, bottom) round a figure's plot, so that no tick label or line label is clipped
+FIG_MARGINS = (6, 12, 16, 4)
 
 
 def ensure_app() -> QApplication:
@@ -82,6 +85,9 @@ def _prepare(view: PlotView, size: tuple[int, int] = FIG_SIZE) -> PlotView:
         label.setText(label.text, color="#222222")
     _unhinted(view)
     view.header.hide()
+    # room round the plot for tick labels half outside the axes (a top "10⁷", a right-hand "10⁴"):
+    # the page has no header line above them to lend its space
+    view.plot.layout.setContentsMargins(*FIG_MARGINS)
     view.cursor_label.hide()
     view.warning.hide()
     view.setAttribute(Qt.WidgetAttribute.WA_DontShowOnScreen, True)
@@ -94,7 +100,7 @@ def _prepare(view: PlotView, size: tuple[int, int] = FIG_SIZE) -> PlotView:
 
 
 def _notes(view: PlotView) -> str:
-    text = rich_label(html.escape(view.warning_text.replace("⚠ ", ""), quote=False))
+    text = rich_label(rich_numbers(html.escape(view.warning_text.replace("⚠ ", ""), quote=False)))
     return f" Note: {text}." if text else ""
 
 
@@ -146,12 +152,13 @@ def _tradeoff(content: ReportContent, key: str) -> Figure | None:
     if tc is None:
         return None
     if key == "tradeoff_j":
-        v = CurvesPlot("Transparency index", ("B_c", "N·s/m"), ("J", "–"), log_y=True)
+        index = QUANTITIES["transparency_index"]
+        v = CurvesPlot("Transparency index", ("B_c", "N·s/m"), ("J", index.unit), log_y=True)
         v.add("J (eq. 10–11)", tc.bc, tc.index, "#1f5fbf")
         if math.isfinite(best.bc):
             v.add("optimum", [best.bc], [best.index], "#c92a2a", symbol="o")
         cap = (f"Transparency index J against the controller damping B<sub>c</sub>; optimum B<sub>c</sub> = "
-               f"{num(best.bc, rich=True)} N&middot;s/m, J = {num(best.index, rich=True)}.")
+               f"{num(best.bc, rich=True)} N&middot;s/m, J = {index.format(best.index, rich=True)}.")
         return Figure(key, "Transparency index", cap, v)
     v = CurvesPlot("Robust stability", ("B_c", "N·s/m"), ("‖L‖∞", "–"))
     v.add("‖L‖∞ (eq. 16)", tc.bc, tc.peak, "#d9480f")
@@ -205,21 +212,23 @@ def _scenario(content: ReportContent, key: str) -> Figure | None:
                f"{out.verdict.kind} ({out.verdict.reason}).")
         return Figure(key, "Scenario time response: position", cap, v)
     v = CurvesPlot("Scenario: forces", ("t", "s"), ("F", "N"))
-    v.add("actuator F_d", out.t, out.f_d, "#1f5fbf")
-    v.add("human F_h", out.t, out.f_h, "#2b8a3e", style=Qt.PenStyle.DashLine)
-    v.add("environment F_e", out.t, out.f_e, "#d9480f", width=1.2)
+    v.add("actuator F<sub>d</sub>", out.t, out.f_d, "#1f5fbf")
+    v.add("human F<sub>h</sub>", out.t, out.f_h, "#2b8a3e", style=Qt.PenStyle.DashLine)
+    v.add("environment F<sub>e</sub>", out.t, out.f_e, "#d9480f", width=1.2)
     cap = f"Scenario &ldquo;{name}&rdquo;: actuator, human and environment forces."
     return Figure(key, "Scenario time response: forces", cap, v)
 
 
 _BUILDERS = {"bound": _bound, "reserve": _reserve, "range": _range, "chart": _chart, "tradeoff_j": _tradeoff, "tradeoff_l": _tradeoff,
              "step": _step, "map": _map, "scenario_position": _scenario, "scenario_force": _scenario,
-             **{k: identify_figure for k in IDENTIFY_FIGURES}, **{k: zwidth_figure for k in ZWIDTH_FIGURES}}
+             **{k: identify_figure for k in IDENTIFY_FIGURES}, **{k: zwidth_figure for k in ZWIDTH_FIGURES},
+             **{k: observer_figure for k in OBSERVER_FIGURES}}
 
 
 def make_view(content: ReportContent, key: str) -> Figure | None:
     """One figure by key: ``bound``, ``reserve``, ``range``, ``chart``, ``tradeoff_j``, ``tradeoff_l``, ``step``,
-    ``map``, ``scenario_position``, ``scenario_force``; ``None`` if the profile has no such data."""
+    ``map``, ``scenario_position``, ``scenario_force``, ``observer_plant``, ``observer_coupling`` and the
+    identification and Z-width keys; ``None`` if the profile has no such data."""
     ensure_app()
     if key not in _BUILDERS:
         raise ValueError(f"unknown plot {key!r}")
@@ -232,7 +241,7 @@ def make_view(content: ReportContent, key: str) -> Figure | None:
 
 
 FIGURE_KEYS = ("bound", "reserve", "range", "chart", "tradeoff_j", "tradeoff_l", "step", "map", "scenario_position",
-               "scenario_force", *IDENTIFY_FIGURES, *ZWIDTH_FIGURES)
+               "scenario_force", *OBSERVER_FIGURES, *IDENTIFY_FIGURES, *ZWIDTH_FIGURES)
 
 
 def build_figures(content: ReportContent) -> list[Figure]:

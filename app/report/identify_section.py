@@ -98,7 +98,7 @@ def identification_part(profile: Profile) -> Part:
            + (f": {names}." if names else " (no measurements embedded).")
            + " The table gives each parameter of the profile's device with its 95&nbsp;% interval "
            "(from the Jacobian or the profile likelihood of the weighted log-response fit, or typed by the "
-           "user; &ldquo;unbounded&rdquo; where the measurements do not bound it).")
+           "user; &infin; where the measurements do not bound it).")
     notes: tuple[str, ...] = ()
     if sec.notes:
         notes = ("<b>What the fit said</b> about these measurements:",

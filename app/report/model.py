@@ -33,7 +33,7 @@ ReportCancelled = OperationCancelled
 
 
 def num(x: Any, digits: int = DIGITS, *, rich: bool = False) -> str:
-    """A number as the report prints it (``inf`` -> ``unbounded``, ``None`` -> ``infeasible``):
+    """A number as the report prints it (``inf`` -> ``∞``, ``None`` -> ``infeasible``):
     :func:`analysis.study.format_number`, the rule the CLI and the GUI use too.  ``rich``: HTML
     powers of ten (``4.8×10<sup>−8</sup>``) for the page; the plain text is for the number table."""
     return format_number(x, digits, rich=rich)

@@ -6,6 +6,7 @@ fonts and palette as the app's :class:`~app.views.base.PlotView`; colours are gi
 from __future__ import annotations
 
 import math
+import re
 
 from app import qt_compat  # noqa: F401 - before any Qt call
 
@@ -40,13 +41,15 @@ class CurvesPlot(PlotView):
         else:
             item = self.curve(name, color, width, style)
             item.setData(xs, ys)
-        self._series.append(Series(name, f"{self.x_name} ({self.x_unit})", f"{self.y_name} ({self.y_unit})", xs, ys))
+        plain = re.sub(r"<sub>(.*?)</sub>", r"_\1", name)  # a legend's F<sub>d</sub> is F_d in the export
+        self._series.append(Series(plain, f"{self.x_name} ({self.x_unit})", f"{self.y_name} ({self.y_unit})", xs, ys))
 
     def hline(self, y: float, label: str) -> None:
         pos = math.log10(y) if self.is_log()[1] else y
         line = pg.InfiniteLine(pos=pos, angle=0, movable=False,
                                pen=pg.mkPen("#c92a2a", width=1, style=Qt.PenStyle.DotLine),
-                               label=label, labelOpts={"position": 0.08, "color": "#c92a2a"})
+                               label=label, labelOpts={"position": 0.03, "color": "#c92a2a",
+                                                       "anchors": [(0, 1), (0, 1)]})  # starts at 3 %: never clipped
         self.plot.addItem(line, ignoreBounds=True)
 
     def export_series(self) -> list[Series]:

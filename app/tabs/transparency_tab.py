@@ -52,6 +52,7 @@ from app.widgets.task_progress import TASK_TITLES
 from app.tabs.base import AnalysisTab
 from app.tabs.held_plots import HeldPlots
 from analysis.study.citations import EOM
+from analysis.study.quantities import J_UNIT
 from app.widgets.citation_note import CitationNote
 from app.widgets.rich_text_pane import RichTextPane, scrolling_pane
 from app.widgets.text_pacer import TextPacer
@@ -131,7 +132,7 @@ class TransparencyTab(HeldPlots, AnalysisTab):
     def _build_plots(self) -> None:
         bc_axis = ("B<sub>c</sub>", "N·s/m")
         self.index_plot = CurvesPlot("J(B<sub>c</sub>), eq. 11 (Fig. 8)", bc_axis,
-                                     ("J", "m²/(N²·s)"), log_y=True)
+                                     ("J", J_UNIT), log_y=True)
         self.index_plot.add_curve("J", "J(B<sub>c</sub>)", "a", export_name="J")
         self.index_plot.add_marker("current", "current B<sub>c</sub>", "b", "o", export_name="J at current B_c")
         self.index_plot.add_marker("optimum", "robust optimum", "c", "star", 14, export_name="J at optimum")

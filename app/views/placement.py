@@ -18,6 +18,9 @@ from PySide6.QtCore import QObject, QPointF, QRectF, QTimer, Slot
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import QGraphicsTextItem
 
+from analysis.study.quantities import rich_numbers
+from app.views.base import rich_label
+
 __all__ = ["LegendPlacer", "CenterMessage", "scene_points", "densify"]
 
 #: (legend anchor, view-box anchor, offset in px) in order of preference
@@ -178,7 +181,8 @@ class CenterMessage:
         if not text:
             self.item.hide()
             return
-        self.item.setHtml(f"<div align='center' style='color:{color}'>{html.escape(text)}</div>")
+        rich = rich_label(rich_numbers(html.escape(text)))  # k_c -> k<sub>c</sub>, 1e+04 -> 1×10<sup>4</sup>
+        self.item.setHtml(f"<div align='center' style='color:{color}'>{rich}</div>")
         self.item.show()
         self._center()
 

@@ -10,6 +10,7 @@ import numpy as np
 from analysis.transparency.settings import WallSettings
 
 from analysis.study.labels import HOLD_LABELS
+from analysis.study.quantities import J_UNIT
 from analysis.study.wall import WallPoint, WallTradeoff
 from app.views.base import fmt
 
@@ -25,7 +26,7 @@ def wall_summary(st: WallSettings, point: WallPoint, trade: WallTradeoff | None,
     lines += [f"<b>Hold model:</b> {HOLD_LABELS[st.hold]}",
              f"<b>B<sub>c</sub> = {fmt(point.bc)} N·s/m</b>"]
     if point.index.finite:
-        lines.append(f"J = {fmt(point.index.index)} m²/(N²·s)")
+        lines.append(f"J = {fmt(point.index.index)} {J_UNIT}")
     else:
         lines.append(f"J = ∞: <span style='color:{bad}'>{point.index.reason}</span>")
     where = "ω → ∞" if math.isinf(pk.frequency) else f"ω = {fmt(pk.frequency)} rad/s"
@@ -41,7 +42,7 @@ def wall_summary(st: WallSettings, point: WallPoint, trade: WallTradeoff | None,
     elif trade.optimum.feasible:
         o = trade.optimum
         on = " (on the constraint ‖L‖<sub>∞</sub> = 1)" if o.constrained else ""
-        lines.append(f"<b>Robust optimum:</b> B<sub>c</sub> = {fmt(o.bc)} N·s/m, J = {fmt(o.index)}, "
+        lines.append(f"<b>Robust optimum:</b> B<sub>c</sub> = {fmt(o.bc)} N·s/m, J = {fmt(o.index)} {J_UNIT}, "
                      f"‖L‖<sub>∞</sub> = {20 * math.log10(o.peak):+.2f} dB{on}")
     else:
         lines.append(f"<b>Robust optimum:</b> <span style='color:{bad}'>none in "
