@@ -3,8 +3,9 @@
 A region "below the curve" (the feasible gains of the design chart, the stable walls of the
 Z-width chart) has no lower edge of its own; shading it down to a fixed floor near the data drew
 an edge there that looked like a limit (lower gains infeasible).  :class:`FloorFill` keeps a
-hidden floor curve at or below the view's lower edge, and the shading is left out of the
-auto-range, so it always reaches the axis.
+hidden floor curve on the view's lower edge (following every zoom), and the shading is left out
+of the auto-range, so it always reaches the axis.  It stops there, never below: an SVG drawing
+has no clipping, so a shading past the edge would cover the axis and its labels.
 """
 
 from __future__ import annotations
@@ -14,26 +15,27 @@ import math
 import numpy as np
 import pyqtgraph as pg
 
-__all__ = ["FloorFill", "axis_floor", "FLOOR_DECADES"]
-
-#: how far below the lowest data point the floor lies at least (decades on a log axis)
-FLOOR_DECADES = 3.0
+__all__ = ["FloorFill", "axis_floor"]
 
 
-def axis_floor(view_bottom: float, y: np.ndarray, log_y: bool, decades: float = FLOOR_DECADES) -> float:
-    """Where a shading "down to the axis" ends, in data units: at or below the view's lower edge
-    ``view_bottom`` (view coordinates: log10 on a log axis) and, on a log axis, at least ``decades``
-    below the lowest positive value of ``y``."""
-    y = np.asarray(y, float)
-    if log_y:
-        y = y[np.isfinite(y) & (y > 0)]
-        edge = 10.0 ** view_bottom if math.isfinite(view_bottom) else math.inf
-        low = float(y.min()) / 10.0 ** decades if y.size else math.inf
-        value = min(edge, low)
-        return value if math.isfinite(value) and value > 0 else 1e-300
-    y = y[np.isfinite(y)]
-    value = min(view_bottom, float(y.min()) if y.size else view_bottom)
-    return value if math.isfinite(value) else 0.0
+def axis_floor(view_bottom: float, x: np.ndarray, y: np.ndarray, log_x: bool, log_y: bool
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """The floor ``(x, y)`` (data units) of a shading "down to the axis" under the curve ``(x, y)``:
+    the view's lower edge ``view_bottom`` (view coordinates: log10 on a log axis), or the curve
+    itself where it lies below that edge (no shading there: none outside the view).  Where the
+    curve crosses the edge a point is added, so that no sliver reaches below it."""
+    vx = np.log10(np.asarray(x, float)) if log_x else np.asarray(x, float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        vy = np.log10(np.asarray(y, float)) if log_y else np.asarray(y, float)
+    if not math.isfinite(view_bottom):
+        return np.asarray(x, float), np.asarray(y, float)
+    vy = np.where(np.isfinite(vy), vy, view_bottom)
+    d = vy - view_bottom
+    cross = np.flatnonzero(d[:-1] * d[1:] < 0)
+    t = d[cross] / (d[cross] - d[cross + 1])
+    fx = np.insert(vx, cross + 1, vx[cross] + t * (vx[cross + 1] - vx[cross]))
+    fy = np.insert(np.minimum(vy, view_bottom), cross + 1, view_bottom)
+    return (10.0 ** fx if log_x else fx), (10.0 ** fy if log_y else fy)
 
 
 class FloorFill:
@@ -47,7 +49,6 @@ class FloorFill:
                  fill: pg.FillBetweenItem) -> None:
         self.plot, self.floor, self.top, self.fill = plot, floor, top, fill
         self.enabled = True
-        self.value = math.nan  # the floor last drawn (data units), for tests
         plot.addItem(fill, ignoreBounds=True)
         self.floor.setVisible(False)
         plot.getViewBox().sigYRangeChanged.connect(lambda *_: self.update())
@@ -58,7 +59,7 @@ class FloorFill:
         self.update()
 
     def update(self) -> None:
-        """Lay the floor under the top curve's points, at or below the view's lower edge."""
+        """Lay the floor under the top curve's points, on the view's lower edge."""
         if not self.enabled:
             return
         x, y = self.top.getOriginalDataset()
@@ -66,9 +67,10 @@ class FloorFill:
             if self.floor.getOriginalDataset()[0] is not None:
                 self.floor.setData([], [])
             return
-        log_y = bool(self.plot.getViewBox().state["logMode"][1])
-        value = axis_floor(float(self.plot.getViewBox().viewRange()[1][0]), y, log_y)
-        if value == self.value and np.array_equal(self.floor.getOriginalDataset()[0], x):
+        vb = self.plot.getViewBox()
+        log_x, log_y = (bool(v) for v in vb.state["logMode"])
+        fx, fy = axis_floor(float(vb.viewRange()[1][0]), x, y, log_x, log_y)
+        ox, oy = self.floor.getOriginalDataset()
+        if ox is not None and np.array_equal(ox, fx) and np.array_equal(oy, fy):
             return
-        self.value = value
-        self.floor.setData(np.asarray(x, float), np.full(len(x), value))
+        self.floor.setData(fx, fy)

@@ -127,19 +127,27 @@ def _fill_bottom(view) -> float:
     return float(view.fill.path().boundingRect().top())  # y grows upward in view coordinates
 
 
-def test_design_chart_shades_the_feasible_gains_down_to_the_axis(chart):
+def test_design_chart_shades_the_feasible_gains_down_to_the_axis(chart, tmp_path):
     """Every k_c below the largest is feasible: the shading reaches the axis's lower edge (it stopped
-    at a decade below the curve's minimum, about 4.6 kN/m on the HBFD), also after zooming out."""
+    at a decade below the curve's minimum, about 4.6 kN/m on the HBFD), also after zooming out, and
+    never past it (an SVG has no clipping: it would cover the axis)."""
     vb = chart.plot.getViewBox()
-    _ux, uy = chart.upper.getData()
-    assert _fill_bottom(chart) <= vb.viewRange()[1][0]
-    assert _fill_bottom(chart) <= float(np.min(uy)) - 2.9  # well below the data (3 decades)
+    assert _fill_bottom(chart) == pytest.approx(vb.viewRange()[1][0], abs=1e-9)
     vb.setYRange(vb.viewRange()[1][0] - 6, vb.viewRange()[1][1], padding=0)  # zoomed out 6 decades below
-    assert _fill_bottom(chart) <= vb.viewRange()[1][0]
+    assert _fill_bottom(chart) == pytest.approx(vb.viewRange()[1][0], abs=1e-9)
     # the shading is no part of the auto-range: the axis still fits the data
+    _ux, uy = chart.upper.getData()
     vb.enableAutoRange()
     vb.updateAutoRange()
     assert vb.viewRange()[1][0] > float(np.min(uy)) - 1.0
+    assert _fill_bottom(chart) == pytest.approx(vb.viewRange()[1][0], abs=1e-9)
+    # zoomed in above part of the curve: no shading below the view there either
+    vb.setYRange(float(np.max(uy)) - 0.2, float(np.max(uy)) + 0.1, padding=0)
+    bottom, path = vb.viewRange()[1][0], chart.fill.path()
+    ux, _uy = chart.upper.getData()
+    xs = np.linspace(ux[0], ux[-1], 200)[1:-1]
+    assert not any(path.contains(QPointF(x, bottom - 0.01)) for x in xs)
+    assert any(path.contains(QPointF(x, bottom + 0.01)) for x in xs)
 
 
 def test_zwidth_region_shades_the_stable_walls_down_to_the_axis(qtbot):
@@ -153,9 +161,9 @@ def test_zwidth_region_shades_the_stable_walls_down_to_the_axis(qtbot):
     qtbot.waitExposed(view)
     vb = view.plot.getViewBox()
     assert vb.viewRange()[1][0] < np.log10(5e3)  # the passive curve is in view
-    assert _fill_bottom(view) <= vb.viewRange()[1][0]
+    assert _fill_bottom(view) == pytest.approx(vb.viewRange()[1][0], abs=1e-9)
     vb.setYRange(-2, 8, padding=0)
-    assert _fill_bottom(view) <= -2
+    assert _fill_bottom(view) == pytest.approx(-2, abs=1e-9)
     top = view.fill.path().boundingRect().bottom()
     assert top == pytest.approx(np.log10(1e4 * 101), abs=1e-6)  # up to the exact curve, no further
 
