@@ -22,7 +22,7 @@ from PySide6.QtWidgets import QWidget
 from analysis.chain.velocity_filter import FILTER_KINDS, VelocityFilter
 from analysis.sampled import FilterOptimum
 from analysis.study import optimum_verdict
-from analysis.study.quantities import rich_numbers
+from analysis.study.quantities import superscript_numbers
 
 from app.views.base import PlotView, Series
 
@@ -66,7 +66,7 @@ class FilterOptimumView(PlotView):
         self.plot_widget.setMinimumSize(260, 180)
 
     def set_busy(self, busy: bool, text: str = "") -> None:
-        head = f"<b>{self.title}</b>" + (f"  {rich_numbers(self.summary)}" if self.summary else "")
+        head = f"<b>{self.title}</b>" + (f"  {superscript_numbers(self.summary)}" if self.summary else "")
         self.header.setText(head + (f"  <i>({text or 'updating…'})</i>" if busy else ""))
 
     def update_optimum(self, opt: FilterOptimum | None) -> None:
