@@ -54,6 +54,11 @@ def test_report_numbers_of_the_seed_case(app, seed_profile):
     binding = [r for r in robust.rows if r.label.startswith("binding device")]
     assert len(binding) == 1 and binding[0].value == "1.2"
     assert "does NOT hold" in robust.after[0]  # the profile's k_c = 50 kN/m exceeds 49.15 kN/m
+    ident = next(s for s in c.sections if s.title == "Identification")
+    row = next(r for r in ident.rows if "ground_dampings[3]" in r.label)
+    assert row.value == "5" and row.unit == "N&middot;s/m" and "95&nbsp;% interval [1.2, 5]" in row.label
+    for sec in c.sections:  # issue 22: the Unit column says units, never values (an interval, a coefficient)
+        assert not any(ch.isdigit() for r in sec.rows for ch in r.unit if ch.isascii()), sec.title
 
 
 def test_html_and_pdf_reports_have_the_section_and_the_fit_figure(app, seed_profile, tmp_path):
@@ -98,7 +103,7 @@ def test_a_profile_with_unbounded_intervals_reports_why_there_is_no_robust_desig
     assert robust.rows == () and "robust.kc" not in c.numbers
     assert "no robust design: the measurements do not bound masses[0]" in robust.after[0]
     ident = next(s for s in c.sections if s.title == "Identification")
-    assert any("∞" in r.value or "∞" in r.unit for r in ident.rows)  # format_number's one spelling of inf
+    assert any("∞]" in r.label for r in ident.rows)  # the interval [0, ∞]: format_number's one spelling of inf
     assert ident.after[0].startswith("<b>What the fit said</b>")
     assert ident.after[1] == "&bull;&nbsp;the handle mode is not detected in these measurements: " \
                              "&lt;the device is the merged chain&gt;"

@@ -106,6 +106,7 @@ def test_no_unit_cell_holds_a_value(reports):
         for r in rows:
             assert len(r) == 4, r
             assert not number.match(r[3]), (name, r)
+            assert not re.search(r"[0-9]", r[3]), (name, r)  # units only: m², never a value
             assert not any(w in r[3] for w in ("Impedance worst case", "stable", "infeasible")), (name, r)
     eom = {r[0]: r for r in _rows(reports["eom"][2])}
     alpha = [r for r in eom.values() if r[1] == "α"]

@@ -47,8 +47,8 @@ def _rows(profile: Profile, numbers: Numbers) -> tuple[Row, ...]:
         numbers[f"identify.{key}"] = (value, text)
         numbers[f"identify.{key}.low"] = (lo, format_number(lo))
         numbers[f"identify.{key}.high"] = (hi, format_number(hi))
-        rows.append(Row(f"{label} <code>{html.escape(key)}</code>", "", text,
-                        f"{unit}, 95&nbsp;%: [{format_number(lo)}, {format_number(hi)}]"))
+        rows.append(Row(f"{label} <code>{html.escape(key)}</code>, 95&nbsp;% interval "
+                        f"[{format_number(lo)}, {format_number(hi)}]", "", text, unit))
     return tuple(rows)
 
 
