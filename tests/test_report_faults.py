@@ -155,6 +155,7 @@ def test_figures_leave_room_for_their_labels(app, reports):
     """2. The line label of the robust-stability figure and the top tick label of a figure lie
     inside the figure (they were clipped at its left and top edges)."""
     from PySide6.QtCore import QRectF
+    from PySide6.QtGui import QFont, QFontMetricsF
 
     from app.report.figures import make_view
 
@@ -170,8 +171,9 @@ def test_figures_leave_room_for_their_labels(app, reports):
             assert scene.contains(box), (box, scene)
             assert box.left() >= view.plot.vb.sceneBoundingRect().left()
         left = view.plot.getAxis("left")
-        font_half = left.fontMetrics().height() / 2 if hasattr(left, "fontMetrics") else 6
-        assert left.sceneBoundingRect().top() >= font_half  # a tick label at the top has room above
+        font = left.style.get("tickFont") or QFont()
+        half_line = QFontMetricsF(font).height() / 2  # a tick label is centred on its tick
+        assert left.sceneBoundingRect().top() >= half_line  # so the top one has room above the axis
     finally:
         fig.view.deleteLater()
 
