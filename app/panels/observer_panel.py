@@ -52,7 +52,7 @@ class ObserverPanel(QGroupBox):
         ]
         g = QGridLayout(self)
         g.setContentsMargins(6, 4, 6, 4)
-        g.setHorizontalSpacing(10)
+        g.setHorizontalSpacing(6)  # three columns within the tab's width at 1280 px
         g.setVerticalSpacing(2)
         for r, row in enumerate(rows):
             for c, w in enumerate(row):

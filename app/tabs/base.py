@@ -18,9 +18,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar
 
-from PySide6.QtCore import Signal
-from PySide6.QtGui import QShowEvent
-from PySide6.QtWidgets import QWidget
+from PySide6.QtCore import QEvent, QObject, QSize, QTimer, Signal
+from PySide6.QtGui import QResizeEvent, QShowEvent
+from PySide6.QtWidgets import QFrame, QScrollArea, QVBoxLayout, QWidget
 
 from app.core.commands import Editor
 from app.core.compute_graph import ComputeGraph
@@ -28,7 +28,73 @@ from app.core.model import ProfileModel
 from app.core.settings import Settings
 from app.views.base import PlotView
 
-__all__ = ["AppContext", "AnalysisTab"]
+__all__ = ["AppContext", "AnalysisTab", "scroll_body", "PLOT_MIN_HEIGHT"]
+
+#: The least height of a plot (its PlotWidget) on any tab: below it a tab scrolls instead.
+PLOT_MIN_HEIGHT = 120
+
+
+class _TabScroll(QScrollArea):
+    """A scroll area that gives its body the viewport's size, never less than the body's minimum.
+
+    Not ``widgetResizable``: that sizes a body with word-wrapped labels (height-for-width) by its
+    preferred height, so that a tab would scroll at any window height.
+    """
+
+    def __init__(self, parent: QWidget) -> None:
+        super().__init__(parent)
+        self.setObjectName("tabScroll")
+        self.setFrameShape(QFrame.Shape.NoFrame)
+        self.setWidgetResizable(False)
+
+    def set_body(self, body: QWidget) -> None:
+        self.setWidget(body)
+        body.installEventFilter(self)
+        self.viewport().installEventFilter(self)
+
+    def fit_body(self) -> None:
+        body = self.widget()
+        if body is None:
+            return
+        least = body.minimumSizeHint().expandedTo(body.minimumSize())
+        view = self.maximumViewportSize()  # the viewport's size without scroll bars
+        width = max(least.width(), view.width())
+        if least.height() > view.height():  # a vertical scroll bar takes part of the width
+            width = max(least.width(), view.width() - self.verticalScrollBar().sizeHint().width())
+        height = max(least.height(), view.height())
+        if width > view.width():
+            height = max(least.height(), view.height() - self.horizontalScrollBar().sizeHint().height())
+        if body.size() != QSize(width, height):
+            body.resize(width, height)
+
+    def resizeEvent(self, event: QResizeEvent) -> None:  # noqa: N802 - Qt API
+        super().resizeEvent(event)
+        self.fit_body()
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt API
+        if event.type() in (QEvent.Type.LayoutRequest, QEvent.Type.Resize) and watched is not None:
+            if watched is self.widget() and event.type() == QEvent.Type.LayoutRequest:
+                QTimer.singleShot(0, self.fit_body)  # after the layout took the new minimum
+            elif watched is self.viewport():
+                self.fit_body()
+        return super().eventFilter(watched, event)
+
+
+def scroll_body(tab: QWidget) -> QWidget:
+    """The widget a tab lays its contents on: inside a scroll area that fills ``tab``.
+
+    A tab's contents keep their minimum size (every plot at least :data:`PLOT_MIN_HEIGHT` tall, every
+    label whole); on a window smaller than that the tab scrolls instead of making the window's
+    minimum size larger than a laptop screen (1024×700 fits).
+    """
+    area = _TabScroll(tab)
+    body = QWidget()
+    body.setObjectName("tabBody")
+    area.set_body(body)
+    outer = QVBoxLayout(tab)
+    outer.setContentsMargins(0, 0, 0, 0)
+    outer.addWidget(area)
+    return body
 
 
 @dataclass(frozen=True)
@@ -73,6 +139,8 @@ class AnalysisTab(QWidget):
             return
         self._built = True
         self.build()
+        for view in self.views():  # a plot never shrinks below a readable height: the tab scrolls
+            view.plot_widget.setMinimumHeight(max(view.plot_widget.minimumHeight(), PLOT_MIN_HEIGHT))
         self.apply_theme(self.dark)
         self.viewsBuilt.emit()
 

@@ -10,7 +10,7 @@ from analysis.study import display_kind
 from app.views.base import PlotView
 from app.widgets.colors import CURSOR_COLORS
 from app.views.design_chart import DesignChart
-from app.tabs.base import AnalysisTab
+from app.tabs.base import AnalysisTab, scroll_body
 from analysis.study.citations import ADAMS
 from app.widgets.citation_note import CitationNote
 
@@ -30,7 +30,7 @@ class DesignTab(AnalysisTab):
                       "every point in the shaded region satisfies the two-port bound over the analysis band.")
         hint.setWordWrap(True)
         hint.setStyleSheet(f"color: {CURSOR_COLORS[0]};")  # muted, still 4.5:1 on the window colour
-        lay = QVBoxLayout(self)
+        lay = QVBoxLayout(scroll_body(self))  # scrolls below its minimum size
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addWidget(self.chart, 1)
         lay.addWidget(hint)

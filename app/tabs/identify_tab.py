@@ -23,7 +23,7 @@ from app.core import nodes_identify
 from app.core.compute_graph import ComputeGraph
 from app.core.nodes_identify import FIT_NODE, NODES, ROBUST_NODE, fit_params
 from app.panels.identify_panel import IdentifyPanel
-from app.tabs.base import AnalysisTab
+from app.tabs.base import AnalysisTab, scroll_body
 from app.views.base import PlotView
 from app.views.bode_view import BodeView, OrderTable, ParameterTable
 from app.widgets.node_progress import NodeProgress
@@ -104,7 +104,7 @@ class IdentifyTab(AnalysisTab):
         clay.addWidget(tables, 1)
         clay.addWidget(CitationNote(ADAMS))  # the full citation of the tab's equation numbers
         self.bode.set_corner(corner)
-        lay = QHBoxLayout(self)
+        lay = QHBoxLayout(scroll_body(self))  # scrolls below its minimum size
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addWidget(scroll)
         lay.addWidget(self.bode, 1)

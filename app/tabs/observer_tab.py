@@ -28,7 +28,7 @@ from app.panels.observer_panel import ObserverPanel
 from app.views.base import PlotView, fmt
 from app.views.curves_plot import CurvesPlot
 from app.widgets.task_progress import TASK_TITLES
-from app.tabs.base import AnalysisTab
+from app.tabs.base import AnalysisTab, scroll_body
 from app.tabs.held_plots import HeldPlots
 from analysis.study.citations import EOM
 from app.widgets.citation_note import CitationNote
@@ -61,7 +61,7 @@ class ObserverTab(HeldPlots, AnalysisTab):
         grid.addWidget(self.step_plot, 1, 1)
         for view in (self.plant_plot, self.disturbance_plot, self.coupling_plot, self.step_plot):
             view.legend_outside()  # below the plot: inside, it covers the curves
-        lay = QVBoxLayout(self)
+        lay = QVBoxLayout(scroll_body(self))  # scrolls below its minimum size
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addWidget(self.panel)
         self.device_label = QLabel()  # which devices the tab analyses (the profile's, or its section's)

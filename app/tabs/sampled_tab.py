@@ -53,7 +53,7 @@ from app.widgets.node_progress import NodeProgress
 from app.widgets.rich_text_pane import RichTextPane
 from app.widgets.task_progress import TASK_TITLES
 from app.tabs.async_jobs import AsyncJobs
-from app.tabs.base import AnalysisTab
+from app.tabs.base import AnalysisTab, scroll_body
 from app.tabs.held_plots import HeldPlots
 from app.widgets.text_pacer import TextPacer
 from analysis.study.citations import ADAMS, HANNAFORD_RYU
@@ -119,7 +119,7 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
         self.split.setStretchFactor(1, 1)
         self.split.setChildrenCollapsible(False)
         self.controls.hide()
-        lay = QVBoxLayout(self)
+        lay = QVBoxLayout(scroll_body(self))  # scrolls below its minimum size
         lay.setContentsMargins(4, 2, 4, 4)
         lay.setSpacing(2)
         lay.addWidget(self.settings_button, 0, Qt.AlignmentFlag.AlignLeft)

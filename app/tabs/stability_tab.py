@@ -8,7 +8,7 @@ from PySide6.QtWidgets import QComboBox, QHBoxLayout, QLabel, QSplitter, QVBoxLa
 from app.views.base import PlotView
 from app.views.range_plot import RangePlot
 from app.views.stability_plot import VIEW_MODES, StabilityPlot
-from app.tabs.base import AnalysisTab
+from app.tabs.base import AnalysisTab, scroll_body
 from analysis.study.citations import ADAMS
 from app.widgets.citation_note import CitationNote
 
@@ -45,7 +45,7 @@ class StabilityTab(AnalysisTab):
         tools.addWidget(self.mode_box)
         tools.addStretch(1)
         tools.addWidget(QLabel("Hover a plot to read values; right-click it to export."))
-        lay = QVBoxLayout(self)
+        lay = QVBoxLayout(scroll_body(self))  # scrolls below its minimum size
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addLayout(tools)
         lay.addWidget(split, 1)

@@ -49,7 +49,7 @@ from app.widgets.colors import for_theme
 from app.views.curves_plot import CurvesPlot
 from app.views.wall_summary import inf_spans, wall_summary
 from app.widgets.task_progress import TASK_TITLES
-from app.tabs.base import AnalysisTab
+from app.tabs.base import AnalysisTab, scroll_body
 from app.tabs.held_plots import HeldPlots
 from analysis.study.citations import EOM
 from analysis.study.quantities import J_UNIT
@@ -94,7 +94,7 @@ class TransparencyTab(HeldPlots, AnalysisTab):
                 w.legend_outside()  # six small plots: a legend inside would cover their curves
         for i in range(3):
             grid.setColumnStretch(i, 1)
-        lay = QVBoxLayout(self)
+        lay = QVBoxLayout(scroll_body(self))  # scrolls below its minimum size
         lay.setContentsMargins(4, 4, 4, 4)
         lay.addWidget(self.panel)
         lay.addLayout(grid, 1)

@@ -79,7 +79,7 @@ class VerdictView(QFrame):
         verdict.addWidget(self.badge)
         lay.addLayout(verdict)
         grid = QGridLayout()
-        grid.setHorizontalSpacing(8)
+        grid.setHorizontalSpacing(4)  # the window's minimum width fits 1024 px (the value columns stretch)
         grid.setVerticalSpacing(0)
         cells: dict[str, QLabel] = {}
         for r, row in enumerate(_LAYOUT):
