@@ -42,7 +42,7 @@ from analysis.identify.model import (
     response,
     sampled_response,
 )
-from analysis.identify.params import ChainParameters, device_value, device_with, parameter_keys
+from analysis.identify.params import ChainParameters, device_value, device_with, parameter_keys, parameter_symbol
 from analysis.identify.problem import FitProblem
 from analysis.identify.profile import Profiler, profile_critical_value
 from analysis.identify.results import ChainFit, OrderSelection, Parameter
@@ -95,6 +95,7 @@ __all__ = [
     "order_selection",
     "parameter_box",
     "parameter_keys",
+    "parameter_symbol",
     "profile_critical_value",
     "profile_selection",
     "read_frf",

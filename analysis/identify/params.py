@@ -21,7 +21,7 @@ import numpy as np
 from analysis.chain.device import Device
 from analysis.identify.errors import ParameterKeyError
 
-__all__ = ["FIELDS", "ChainParameters", "parameter_keys", "parse_key", "device_value",
+__all__ = ["FIELDS", "ChainParameters", "parameter_keys", "parameter_symbol", "parse_key", "device_value",
            "device_with", "device_values", "physical_range", "LOG_FLOOR"]
 
 #: The four vector fields of a chain, in the order of :func:`parameter_keys`.
@@ -85,6 +85,35 @@ def parameter_keys(n: int, ground: Iterable[int] | None = None) -> list[str]:
     gs = range(n) if ground is None else sorted(set(int(g) for g in ground))
     return ([f"masses[{i}]" for i in range(n)] + [f"stiffnesses[{i}]" for i in range(n - 1)]
             + [f"dampings[{i}]" for i in range(n - 1)] + [f"ground_dampings[{i}]" for i in gs])
+
+
+#: Each field's symbol and unit, as the device editor shows them (m₁ the handle's mass).
+_SYMBOLS = {"masses": ("m", "kg"), "stiffnesses": ("k", "N/m"), "dampings": ("b", "N·s/m"),
+            "ground_dampings": ("g", "N·s/m")}
+_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def parameter_symbol(key: str) -> tuple[str, str]:
+    """The symbol a person reads for a parameter key, 1-based as the device editor shows it, and its unit.
+
+    ``"masses[0]"`` -> ``("m₁", "kg")``, ``"dampings[2]"`` -> ``("b₃", "N·s/m")``; the keys stay
+    0-based in files and on the command line.  A key of another form is returned as it is, with no unit.
+
+    Parameters
+    ----------
+    key : str
+        A key of :func:`parameter_keys`.
+
+    Returns
+    -------
+    tuple of str
+        The symbol (Unicode subscript digits) and the SI unit.
+    """
+    mt = _KEY.match(str(key))
+    if mt is None:
+        return str(key), ""
+    symbol, unit = _SYMBOLS[mt.group(1)]
+    return symbol + str(int(mt.group(2)) + 1).translate(_SUBSCRIPT), unit
 
 
 def device_value(device: Device, key: str) -> float:

@@ -31,13 +31,27 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from analysis.identify import BOUNDARIES, MEASURED_QUANTITIES, Measurement, MeasurementError, parameter_keys
+from analysis.identify import (BOUNDARIES, MEASURED_QUANTITIES, Measurement, MeasurementError, parameter_keys,
+                               parameter_symbol)
+from analysis.study.quantities import format_number
 from analysis.study import load_measurements
 
-__all__ = ["IdentifyPanel", "MAX_MASSES"]
+from app.widgets.sci_spin_box import SciSpinBox
+
+__all__ = ["IdentifyPanel", "MAX_MASSES", "FIXED_COLUMNS", "NumberBox"]
 
 #: Largest chain the panel offers.
 MAX_MASSES = 8
+#: The fixed-parameters table: symbol (m₁ ...), tick, value, unit.
+FIXED_COLUMNS = ("parameter", "fix", "value", "unit")
+
+
+class NumberBox(SciSpinBox):
+    """A :class:`~app.widgets.sci_spin_box.SciSpinBox` that prints its value by the study's one rule
+    (:func:`~analysis.study.quantities.format_number`, plain text: it reads back)."""
+
+    def textFromValue(self, value: float) -> str:  # noqa: N802 - Qt API
+        return format_number(value)
 
 
 class IdentifyPanel(QWidget):
@@ -80,11 +94,13 @@ class IdentifyPanel(QWidget):
         self.max_order.setRange(0, MAX_MASSES)
         self.max_order.setValue(4)
         self.max_order.setSpecialValueText("off")
-        self.fixed_table = QTableWidget(0, 3)
-        self.fixed_table.setHorizontalHeaderLabels(["parameter", "fix", "value"])
+        self.fixed_table = QTableWidget(0, len(FIXED_COLUMNS))
+        self.fixed_table.setHorizontalHeaderLabels(list(FIXED_COLUMNS))
         self.fixed_table.verticalHeader().hide()
-        self.fixed_table.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
-        self.fixed_table.horizontalHeader().setStretchLastSection(True)
+        header = self.fixed_table.horizontalHeader()
+        header.setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+        header.setSectionResizeMode(2, QHeaderView.ResizeMode.Stretch)  # the value: the rest of the width
+        header.setStretchLastSection(False)
         self.fixed_table.setMinimumHeight(120)
         self.fit_button = QPushButton("Fit")
         self.fit_button.setDefault(True)
@@ -177,23 +193,28 @@ class IdentifyPanel(QWidget):
         old = self.fixed()
         self.fixed_table.setRowCount(len(keys))
         for r, key in enumerate(keys):
-            name = QTableWidgetItem(key)
+            symbol, unit = parameter_symbol(key)  # m₁ as the device editor names it; the key stays 0-based
+            name = QTableWidgetItem(symbol)
             name.setFlags(name.flags() & ~Qt.ItemFlag.ItemIsEditable)
+            name.setData(Qt.ItemDataRole.UserRole, key)
+            name.setToolTip(f"{key} in profiles and on the command line")
             self.fixed_table.setItem(r, 0, name)
             check = QCheckBox()
             check.setChecked(key in old)
             self.fixed_table.setCellWidget(r, 1, check)
-            value = QDoubleSpinBox()
-            value.setDecimals(6)
+            value = NumberBox(log_step=True)
             value.setRange(1e-6, 1e9)
             value.setValue(old.get(key, 1.0))
             self.fixed_table.setCellWidget(r, 2, value)
+            unit_item = QTableWidgetItem(unit)
+            unit_item.setFlags(unit_item.flags() & ~Qt.ItemFlag.ItemIsEditable)
+            self.fixed_table.setItem(r, 3, unit_item)
         self.fixed_table.resizeRowsToContents()
 
     def set_fixed(self, key: str, value: float) -> None:
         """Tick ``key``'s fix box and set its value."""
         for r in range(self.fixed_table.rowCount()):
-            if self.fixed_table.item(r, 0).text() == key:
+            if self.fixed_table.item(r, 0).data(Qt.ItemDataRole.UserRole) == key:
                 self.fixed_table.cellWidget(r, 1).setChecked(True)
                 self.fixed_table.cellWidget(r, 2).setValue(value)
                 return
@@ -205,5 +226,5 @@ class IdentifyPanel(QWidget):
         for r in range(self.fixed_table.rowCount()):
             check, value = self.fixed_table.cellWidget(r, 1), self.fixed_table.cellWidget(r, 2)
             if check is not None and check.isChecked():
-                out[self.fixed_table.item(r, 0).text()] = value.value()
+                out[self.fixed_table.item(r, 0).data(Qt.ItemDataRole.UserRole)] = value.value()
         return out

@@ -10,13 +10,15 @@ residual are dimensionless and keep one measured and one fitted curve.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 from PySide6.QtCore import Qt
+from PySide6.QtGui import QResizeEvent
 from PySide6.QtWidgets import QAbstractItemView, QGridLayout, QHeaderView, QTableWidget, QTableWidgetItem, QWidget
 
-from analysis.identify import ChainFit, Measurement, OrderSelection
+from analysis.identify import ChainFit, Measurement, OrderSelection, parameter_symbol
 from analysis.study import BodeData, bode_data, format_number, parameter_rows
 
 from app.views.base import PlotView, rich_label
@@ -30,7 +32,7 @@ __all__ = ["BodeView", "ParameterTable", "OrderTable", "PARAMETER_COLUMNS", "ORD
 MAGNITUDE_QUANTITIES = {"actuator": ("x/F", "m/N", "a"), "handle": ("x_0/F", "m/N", "c"),
                         "gauge": ("F_g/F", "N/N", "b")}
 
-PARAMETER_COLUMNS = ("parameter", "value", "std. error", "95 % low", "95 % high", "interval", "note")
+PARAMETER_COLUMNS = ("parameter", "unit", "value", "std. error", "95 % low", "95 % high", "interval", "note")
 ORDER_COLUMNS = ("n", "AIC", "BIC", "residual", "")
 
 
@@ -155,11 +157,52 @@ class _Table(QTableWidget):
 
 
 class ParameterTable(_Table):
-    """One row per parameter: value, standard error, 95 % interval and how it was found (wald,
-    profile, unbounded), fixed / not identifiable."""
+    """One row per parameter: its symbol (m₁, k₁, ... 1-based as the device editor shows them; the
+    0-based file key in the tooltip and :meth:`keys`), unit, value, standard error, 95 % interval
+    and how it was found (wald, profile, unbounded), fixed / not identifiable.
+
+    The numbers are :func:`~analysis.study.format_number`'s.  Every column fits its contents when
+    the table is wide enough; else the note column narrows first, then the four number columns,
+    which elide ("…") a number that does not fit (its whole text in the tooltip): no column hides
+    behind a scroll bar (:meth:`fit_columns`)."""
+
+    NUMBER_COLUMNS = (2, 3, 4, 5)
+    NOTE_COLUMN = 7
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(PARAMETER_COLUMNS, parent)
+        self.setWordWrap(False)
+        self.setTextElideMode(Qt.TextElideMode.ElideRight)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        header = self.horizontalHeader()
+        header.setStretchLastSection(False)
+        header.setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
+        header.setMinimumSectionSize(self.fontMetrics().horizontalAdvance("0…") + 8)
+
+    def fit_columns(self) -> None:
+        """Each column as wide as its contents (and header) when they fit; else the note column gives
+        way first, then the number columns share what is left (their text elided)."""
+        header = self.horizontalHeader()
+        smallest = header.minimumSectionSize()
+        want = [max(self.sizeHintForColumn(c), header.sectionSizeHint(c)) for c in range(self.columnCount())]
+        room = self.viewport().width()
+        excess = sum(want) - room
+        if excess > 0:  # the note first, down to its header's width
+            give = min(excess, max(0, want[self.NOTE_COLUMN] - header.sectionSizeHint(self.NOTE_COLUMN)))
+            want[self.NOTE_COLUMN] -= give
+            excess -= give
+        if excess > 0:  # then the numbers, in proportion to their width
+            total = sum(want[c] for c in self.NUMBER_COLUMNS)
+            for c in self.NUMBER_COLUMNS:
+                want[c] = max(smallest, want[c] - math.ceil(excess * want[c] / total))
+        elif room > sum(want):
+            want[self.NOTE_COLUMN] += room - sum(want)  # the spare width to the last column
+        for c, w in enumerate(want):
+            self.setColumnWidth(c, w)
+
+    def resizeEvent(self, event: QResizeEvent) -> None:  # noqa: N802 - Qt API
+        super().resizeEvent(event)
+        self.fit_columns()
 
     def show_fit(self, fit: ChainFit | None) -> None:
         rows = parameter_rows(fit) if fit is not None else []
@@ -168,9 +211,22 @@ class ParameterTable(_Table):
             t = row["text"]
             note = "fixed" if row["fixed"] else ("not identifiable" if not row["identifiable"] else "")
             tip = fit.suggestions.get(row["key"], "") if fit is not None else ""
-            cells = (row["key"], t["value"], t["std_error"], t["low"], t["high"], row["method"], note)
+            symbol, unit = parameter_symbol(row["key"])
+            cells = (symbol, unit, t["value"], t["std_error"], t["low"], t["high"], row["method"], note)
             for c, text in enumerate(cells):
-                self.setItem(r, c, _item(text, tip if c == 6 else ""))
+                item = _item(text, (tip or text) if c == self.NOTE_COLUMN else (text if c in self.NUMBER_COLUMNS else ""))
+                if c == 0:
+                    item.setData(Qt.ItemDataRole.UserRole, row["key"])
+                    item.setToolTip(f"{row['key']} in profiles and on the command line")
+                    item.setTextAlignment(Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter)
+                elif c == 1:
+                    item.setTextAlignment(Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter)
+                self.setItem(r, c, item)
+        self.fit_columns()
+
+    def keys(self) -> list[str]:
+        """The rows' parameter keys as files and the command line spell them (``masses[0]``)."""
+        return [self.item(r, 0).data(Qt.ItemDataRole.UserRole) for r in range(self.rowCount())]
 
 
 class OrderTable(_Table):

@@ -62,8 +62,9 @@ def test_load_fit_use_and_undo(win, qtbot, tmp_path):
     np.testing.assert_allclose(f.device.masses, truth.masses, rtol=1e-6)
     np.testing.assert_allclose(f.device.stiffnesses, truth.stiffnesses, rtol=1e-6)
     # the parameter table shows the fitted numbers; the Bode plot draws the fitted response
-    cells = {row[0]: row for row in tab.parameters.texts()}
-    assert cells["masses[1]"][1] == "2.3" and cells["stiffnesses[2]"][1] == "874000"
+    cells = {row[0]: row for row in tab.parameters.texts()}  # m₁, k₁, ...: 1-based as the device editor
+    assert cells["m₂"][1:3] == ["kg", "2.3"] and cells["k₃"][1:3] == ["N/m", "874000"]
+    assert tab.parameters.keys()[:2] == ["masses[0]", "masses[1]"]  # the file's keys stay 0-based
     x, y = tab.bode.magnitude.data("fitted")
     assert x.size == 400 and np.allclose(y, np.abs(f.responses[0]), rtol=1e-12)
     xm, ym = tab.bode.magnitude.data("measured")
@@ -178,3 +179,52 @@ def test_unbounded_intervals_say_why_there_is_no_robust_design(win, qtbot):
     win.robust_actions.kc_action.trigger()
     qtbot.wait(500)
     assert win.model.profile.kc == kc  # nothing designed over a box that is not one
+
+
+def test_parameter_tables_show_symbols_units_and_whole_columns(qtbot):
+    """Both tables name m₁, k₁ ... (the keys stay masses[0] ...), have a unit column, print numbers by
+    format_number, and show every column at the Identify tab's width (a number that does not fit
+    is elided, never cut)."""
+    from types import SimpleNamespace
+
+    from PySide6.QtCore import Qt
+
+    from analysis.identify import parameter_keys
+    from analysis.study.quantities import format_number
+    from app.panels.identify_panel import IdentifyPanel
+    from app.views.bode_view import ParameterTable
+
+    keys = parameter_keys(4)
+    params = [SimpleNamespace(key=k, value=9.41192e-9 * (i + 1), std_error=1.234567e-10, low=-2.5e-9,
+                              high=1.87654e12, fixed=i == 0, identifiable=i != 3, method="profile")
+              for i, k in enumerate(keys)]
+    table = ParameterTable()
+    qtbot.addWidget(table)
+    table.show_fit(SimpleNamespace(parameters=params, suggestions={}))
+    rows = table.texts()
+    assert [r[0] for r in rows[:4]] == ["m₁", "m₂", "m₃", "m₄"] and rows[4][0] == "k₁" and rows[7][0] == "b₁"
+    assert rows[-1][0] == "g₄" and [rows[0][1], rows[4][1], rows[7][1]] == ["kg", "N/m", "N·s/m"]
+    assert rows[1][2] == format_number(2 * 9.41192e-9) and rows[0][5] == format_number(1.87654e12)
+    assert rows[0][7] == "fixed" and rows[3][7] == "not identifiable"
+    assert table.keys() == keys
+    table.resize(520, 300)  # the tables' width on the Identify tab at 1280×800
+    table.show()
+    qtbot.waitExposed(table)
+    header = table.horizontalHeader()
+    used = sum(header.sectionSize(c) for c in range(table.columnCount()))
+    assert used <= table.viewport().width() + 1  # no column behind a scroll bar
+    assert all(header.sectionSize(c) > 0 for c in range(table.columnCount()))
+    assert table.textElideMode() == Qt.TextElideMode.ElideRight and not table.wordWrap()
+    value = table.item(1, 2)
+    assert value.toolTip() == value.text()  # an elided number's whole text
+
+    panel = IdentifyPanel(0.001)
+    qtbot.addWidget(panel)
+    panel.masses.setValue(3)
+    fixed = panel.fixed_table
+    names = [fixed.item(r, 0).text() for r in range(fixed.rowCount())]
+    assert names == ["m₁", "m₂", "m₃", "k₁", "k₂", "b₁", "b₂", "g₁", "g₂", "g₃"]
+    assert [fixed.item(r, 3).text() for r in (0, 3, 5)] == ["kg", "N/m", "N·s/m"]
+    panel.set_fixed("masses[0]", 2.5e-5)
+    assert panel.fixed() == {"masses[0]": pytest.approx(2.5e-5)}  # the 0-based key the fit and files use
+    assert fixed.cellWidget(0, 2).text() == format_number(2.5e-5)
