@@ -20,7 +20,7 @@ from typing import ClassVar
 
 from PySide6.QtCore import QEvent, QObject, QSize, QTimer, Signal
 from PySide6.QtGui import QResizeEvent, QShowEvent
-from PySide6.QtWidgets import QFrame, QScrollArea, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QAbstractScrollArea, QFrame, QLabel, QScrollArea, QVBoxLayout, QWidget
 
 from app.core.commands import Editor
 from app.core.compute_graph import ComputeGraph
@@ -66,6 +66,28 @@ class _TabScroll(QScrollArea):
             height = max(least.height(), view.height() - self.horizontalScrollBar().sizeHint().height())
         if body.size() != QSize(width, height):
             body.resize(width, height)
+        deficit = self._wrapped_deficit()  # word-wrapped labels at this width need more than the minimum said
+        if deficit > 0:
+            body.resize(width, height + deficit)
+
+    def _wrapped_deficit(self) -> int:
+        """How many pixels the body's word-wrapped labels lack at their laid-out width (not those in a
+        scroll area of their own)."""
+        body = self.widget()
+        layout = body.layout()
+        if layout is None:
+            return 0
+        layout.activate()
+        missing = 0
+        for label in body.findChildren(QLabel):
+            if not (label.wordWrap() and label.isVisibleTo(body) and label.width() > 1):
+                continue
+            parent = label.parentWidget()
+            while parent is not None and parent is not body and not isinstance(parent, QAbstractScrollArea):
+                parent = parent.parentWidget()
+            if parent is body:
+                missing += max(0, label.heightForWidth(label.width()) - label.height())
+        return missing
 
     def resizeEvent(self, event: QResizeEvent) -> None:  # noqa: N802 - Qt API
         super().resizeEvent(event)
@@ -74,7 +96,7 @@ class _TabScroll(QScrollArea):
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt API
         if event.type() in (QEvent.Type.LayoutRequest, QEvent.Type.Resize) and watched is not None:
             if watched is self.widget() and event.type() == QEvent.Type.LayoutRequest:
-                QTimer.singleShot(0, self.fit_body)  # after the layout took the new minimum
+                QTimer.singleShot(0, self, self.fit_body)  # after the layout took the new minimum
             elif watched is self.viewport():
                 self.fit_body()
         return super().eventFilter(watched, event)
