@@ -34,7 +34,7 @@ from app.report.plots import CurvesPlot
 from app.report.zwidth_figures import FIGURE_KEYS as ZWIDTH_FIGURES, zwidth_figure
 
 __all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "FIGURE_KEYS", "CurvesPlot",
-           "quiet_messages"]
+           "quiet_messages", "prepare_view"]
 
 #: size (px at 96 dpi) the views are laid out at; the PDF scales them to the text width
 FIG_SIZE = (658, 350)
@@ -78,7 +78,7 @@ def _unhinted(view: PlotView) -> None:
             item.setFont(f)
 
 
-def _prepare(view: PlotView, size: tuple[int, int] = FIG_SIZE) -> PlotView:
+def prepare_view(view: PlotView, size: tuple[int, int] = FIG_SIZE) -> PlotView:
     """Light theme, no header or warning line, laid out at ``size`` without appearing on screen."""
     view.apply_theme(False)
     for _sample, label in view.legend.items:  # legend text in the foreground colour, not pyqtgraph's grey
@@ -235,7 +235,7 @@ def make_view(content: ReportContent, key: str) -> Figure | None:
     fig = _BUILDERS[key](content, key)
     if fig is None:
         return None
-    _prepare(fig.view)
+    prepare_view(fig.view)
     fig.caption += _notes(fig.view)
     return fig
 

@@ -12,7 +12,7 @@ from PySide6.QtCore import QPointF
 from PySide6.QtGui import QFont, QFontMetricsF
 
 from analysis.study import design_chart, display_kind
-from app.report.figures import _prepare
+from app.report.figures import prepare_view
 from app.views.design_chart import DesignChart
 from app.views.export import export_svg, svg_bytes
 from app.views.range_plot import RangePlot, band_segments
@@ -47,7 +47,7 @@ def chart(qapp, hbfd_profile):
     view.update_chart(design_chart(hbfd_profile))
     ux, uy = view.upper.getData()
     view.update_point(100.0, float(10 ** np.interp(2.0, ux, uy)) / 3, True)  # a data point at b_c = 100
-    _prepare(view)
+    prepare_view(view)
     yield view
     view.close()
     view.deleteLater()
