@@ -50,8 +50,8 @@ test: setup
 	# the benchmarks once, quickly: timing targets are reported, never failed on; a crash fails
 	QT_QPA_PLATFORM=offscreen $(VENV)/bin/zwidth bench --quick
 
-# Everything `make test` runs, then the slow tier (the 10^4-step state machine, the full
-# coverage replicates).  CI (.ci/run) runs this and `make package`.
+# Everything `make test` runs, then the slow tier (the 10^4-step state machine, the 12 x 60
+# hypothesis state machine run, the full coverage replicates).  CI (.ci/run) runs this and `make package`.
 test-all: test
 	$(PYTEST) -m "slow and not package"
 
