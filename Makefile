@@ -19,7 +19,7 @@ PYTEST := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -n auto -p no:cacheprovid
 # default Haswell/Zen/SkylakeX kernels, and it runs on every x86-64 CPU that CI uses.
 SECOND_KERNEL ?= Sandybridge
 
-.PHONY: setup venv system-deps run test test-all lint lint-imports docs package clean distclean
+.PHONY: setup venv system-deps run test test-kernel bench-quick test-all lint lint-imports docs package clean distclean
 
 # Check (and as root install) the system libraries Qt needs; create the venv; install the
 # project editable with its test extra, again only when pyproject.toml changes.
@@ -38,16 +38,22 @@ $(STAMP): pyproject.toml | $(PY)
 run: setup
 	$(VENV)/bin/zwidth $(PROFILE)
 
-# The everyday tier: at most five minutes on two cores.
+# The everyday tier: at most five minutes on two cores.  The lints first (seconds), then the
+# suite; then, side by side (make -j, output kept per target, any failure fails `make test`): the
+# numerics tests under the second kernel, the documentation and the quick benchmarks.
 test: setup
-	$(PYTEST) -m "not slow and not package"
-	OPENBLAS_CORETYPE=$(SECOND_KERNEL) $(PYTEST) -m "numerics and not slow"
 	$(VENV)/bin/ruff check analysis app tests
 	# the layering contracts in pyproject.toml ([tool.importlinter])
 	$(VENV)/bin/lint-imports --no-cache
-	# the user guide and API reference (docs/), warnings as errors
-	$(SPHINX)
-	# the benchmarks once, quickly: timing targets are reported, never failed on; a crash fails
+	$(PYTEST) -m "not slow and not package"
+	$(MAKE) --no-print-directory -j3 -Otarget test-kernel docs bench-quick
+
+# The fitting and identification tests under the second OpenBLAS kernel.
+test-kernel: setup
+	OPENBLAS_CORETYPE=$(SECOND_KERNEL) $(PYTEST) -m "numerics and not slow"
+
+# The benchmarks once, quickly: timing targets are reported, never failed on; a crash fails.
+bench-quick: setup
 	QT_QPA_PLATFORM=offscreen $(VENV)/bin/zwidth bench --quick
 
 # Everything `make test` runs, then the slow tier (the 10^4-step state machine, the 12 x 60
