@@ -41,6 +41,7 @@ def test_a_bad_trials_file_fails_the_command_naming_file_line_and_column(capfd, 
     err = proc.stderr
     assert err.startswith("zwidth: error: ") and str(profile) in err and "$.controller.trials" in err
     assert str(folder / "trials.csv") in err and case.words in err
+    assert "np." not in err  # plain numbers, never numpy reprs
     if case.line is not None:
         assert f"line {case.line}" in err
     if case.column is not None:

@@ -101,7 +101,7 @@ def load_trials(path: str | os.PathLike) -> MeasuredTrials:
     for col in ("b", "k"):
         bad = np.flatnonzero(t.columns[col] < 0)
         if bad.size:
-            raise t.fail(f"{t.columns[col][bad[0]]!r} is negative: must be >= 0", int(bad[0]), col)
+            raise t.fail(f"{float(t.columns[col][bad[0]])!r} is negative: must be >= 0", int(bad[0]), col)
     return MeasuredTrials(path=t.path, b=t.columns["b"], k=t.columns["k"], stable=t.columns["stable"] == 1.0,
                           lines=t.lines)
 
