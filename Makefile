@@ -12,7 +12,7 @@ PROFILE ?= resources/profiles/hbfd.json
 SPHINX := $(VENV)/bin/sphinx-build -E -W --keep-going -q -b html docs docs/_build/html
 
 # The test runner: headless, on every core (pytest-xdist), no cache in the tree.
-PYTEST := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -n auto -p no:cacheprovider
+PYTEST := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -n auto --dist worksteal -p no:cacheprovider
 # The numerics tests (fitting, identification) run a second time under another OpenBLAS kernel,
 # so that a test which holds only on one CPU's floating-point path fails here and not on a
 # contributor's machine (issue 21).  Sandybridge has AVX but no FMA: other roundings than the
@@ -38,7 +38,7 @@ $(STAMP): pyproject.toml | $(PY)
 run: setup
 	$(VENV)/bin/zwidth $(PROFILE)
 
-# The everyday tier: at most five minutes on two cores.  The lints first (seconds), then the
+# The everyday tier: about five minutes on two cores.  The lints first (seconds), then the
 # suite; then, side by side (make -j, output kept per target, any failure fails `make test`): the
 # numerics tests under the second kernel, the documentation and the quick benchmarks.
 test: setup
@@ -48,9 +48,10 @@ test: setup
 	$(PYTEST) -m "not slow and not package"
 	$(MAKE) --no-print-directory -j3 -Otarget test-kernel docs bench-quick
 
-# The fitting and identification tests under the second OpenBLAS kernel.
+# The fitting and identification tests (the `numerics` marker, in tests/test_identify_*.py) under
+# the second OpenBLAS kernel.
 test-kernel: setup
-	OPENBLAS_CORETYPE=$(SECOND_KERNEL) $(PYTEST) -m "numerics and not slow"
+	OPENBLAS_CORETYPE=$(SECOND_KERNEL) $(PYTEST) -m "numerics and not slow" tests/test_identify_*.py
 
 # The benchmarks once, quickly: timing targets are reported, never failed on; a crash fails.
 bench-quick: setup
