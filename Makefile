@@ -12,11 +12,12 @@ PROFILE ?= resources/profiles/hbfd.json
 SPHINX := $(VENV)/bin/sphinx-build -E -W --keep-going -q -b html docs docs/_build/html
 
 # The test runner: headless, on every core (pytest-xdist), no cache in the tree.
-PYTEST := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -n auto --dist worksteal -p no:cacheprovider
-# The numerics tests (fitting, identification) run a second time under another OpenBLAS kernel,
-# so that a test which holds only on one CPU's floating-point path fails here and not on a
-# contributor's machine (issue 21).  Sandybridge has AVX but no FMA: other roundings than the
-# default Haswell/Zen/SkylakeX kernels, and it runs on every x86-64 CPU that CI uses.
+PYTEST := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -n auto -p no:cacheprovider
+# The numerics tests (fitting, identification) run under another OpenBLAS kernel than the CPU's
+# own, so that a test which holds only on one CPU's floating-point path fails here and not on a
+# contributor's machine (issue 21): `make test` runs them under SECOND_KERNEL, `make test-all`
+# (CI) under the CPU's own kernel too.  Sandybridge has AVX but no FMA: other roundings than the
+# Haswell/Zen/SkylakeX kernels, and it runs on every x86-64 CPU that CI uses.
 SECOND_KERNEL ?= Sandybridge
 
 .PHONY: setup venv system-deps run test test-kernel bench-quick test-all lint lint-imports docs package clean distclean
@@ -38,14 +39,15 @@ $(STAMP): pyproject.toml | $(PY)
 run: setup
 	$(VENV)/bin/zwidth $(PROFILE)
 
-# The everyday tier: about five minutes on two cores.  The lints first (seconds), then the
-# suite; then, side by side (make -j, output kept per target, any failure fails `make test`): the
-# numerics tests under the second kernel, the documentation and the quick benchmarks.
+# The everyday tier: about five minutes on two cores.  The lints first (seconds), then the suite
+# (every test once, the numerics ones excepted); then, side by side (make -j, output kept per
+# target, any failure fails `make test`): the numerics tests under the second kernel, the
+# documentation and the quick benchmarks.
 test: setup
 	$(VENV)/bin/ruff check analysis app tests
 	# the layering contracts in pyproject.toml ([tool.importlinter])
 	$(VENV)/bin/lint-imports --no-cache
-	$(PYTEST) -m "not slow and not package"
+	$(PYTEST) -m "not slow and not package and not numerics"
 	$(MAKE) --no-print-directory -j3 -Otarget test-kernel docs bench-quick
 
 # The fitting and identification tests (the `numerics` marker, in tests/test_identify_*.py) under
@@ -57,9 +59,11 @@ test-kernel: setup
 bench-quick: setup
 	QT_QPA_PLATFORM=offscreen $(VENV)/bin/zwidth bench --quick
 
-# Everything `make test` runs, then the slow tier (the 10^4-step state machine, the 12 x 60
-# hypothesis state machine run, the full coverage replicates).  CI (.ci/run) runs this and `make package`.
+# Everything `make test` runs, then the numerics tests under the CPU's own kernel and the slow
+# tier (the 10^4-step state machine, the 12 x 60 hypothesis state machine run, the full coverage
+# replicates).  CI (.ci/run) runs this and `make package`.
 test-all: test
+	$(PYTEST) -m "numerics and not slow" tests/test_identify_*.py
 	$(PYTEST) -m "slow and not package"
 
 lint: setup
