@@ -60,7 +60,7 @@ bench-quick: setup
 	QT_QPA_PLATFORM=offscreen $(VENV)/bin/zwidth bench --quick
 
 # Everything `make test` runs, then the numerics tests under the CPU's own kernel and the slow
-# tier (the 10^4-step state machine, the 12 x 60 hypothesis state machine run, the full coverage
+# tier (a 1500-step seeded state-machine run, the 12 x 60 hypothesis state machine run, the full coverage
 # replicates).  CI (.ci/run) runs this and `make package`.
 test-all: test
 	$(PYTEST) -m "numerics and not slow" tests/test_identify_*.py

@@ -378,19 +378,26 @@ def test_longer_random_use_keeps_the_window_consistent(qapp, tmp_path):
     run_machine(tmp_path, 12, 60)
 
 
+#: Steps of the slow tier's seeded run.  CI has 90 minutes for everything; the benchmark's 10^4
+#: steps took 66 minutes on this machine (2026-12-02), so the slow tier runs the same driver and
+#: seed for 1500 steps (about 10 minutes) and ``zwidth bench`` keeps the 10^4-step run.
+SLOW_STEPS = 1500
+
+
 @pytest.mark.slow
-def test_ten_thousand_seeded_steps_keep_the_window_consistent(qapp):
-    """The long run (slow tier): the benchmark's 10^4 seeded random steps on this driver, every
-    invariant after every step (``make test`` runs the hypothesis machine's few hundred above)."""
+def test_long_seeded_run_keeps_the_window_consistent(qapp):
+    """The long run (slow tier): the benchmark's seeded random steps on this driver, every
+    invariant after every step (``make test`` runs the hypothesis machine's few hundred above;
+    ``zwidth bench`` runs 10^4)."""
     import importlib.util
 
     path = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_state_machine.py"
     spec = importlib.util.spec_from_file_location("zwidth_bench_state_machine", path)
     bench = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(bench)
-    rows = bench.run(steps=bench.STEPS)
-    assert bench.STEPS == 10_000 and rows[0]["failures"] == 0, [r["name"] for r in rows[3:]]
-    assert sum(int(part.rsplit(" ", 1)[1]) for part in rows[2]["name"].split(": ", 1)[1].split(", ")) == 10_000
+    rows = bench.run(steps=SLOW_STEPS)
+    assert rows[0]["failures"] == 0, [r["name"] for r in rows[3:]]
+    assert sum(int(part.rsplit(" ", 1)[1]) for part in rows[2]["name"].split(": ", 1)[1].split(", ")) == SLOW_STEPS
 
 
 def test_undo_history_is_bounded(qapp, tmp_path):
