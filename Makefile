@@ -20,7 +20,7 @@ PYTEST := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -n auto -p no:cacheprovid
 # Haswell/Zen/SkylakeX kernels, and it runs on every x86-64 CPU that CI uses.
 SECOND_KERNEL ?= Sandybridge
 
-.PHONY: setup venv system-deps run test test-kernel bench-quick test-all lint lint-imports docs package clean distclean
+.PHONY: setup venv system-deps run test test-suite test-kernel bench-quick test-all lint lint-imports docs package clean distclean
 
 # Check (and as root install) the system libraries Qt needs; create the venv; install the
 # project editable with its test extra, again only when pyproject.toml changes.
@@ -39,16 +39,20 @@ $(STAMP): pyproject.toml | $(PY)
 run: setup
 	$(VENV)/bin/zwidth $(PROFILE)
 
-# The everyday tier: about five minutes on two cores.  The lints first (seconds), then the suite
-# (every test once, the numerics ones excepted); then, side by side (make -j, output kept per
-# target, any failure fails `make test`): the numerics tests under the second kernel, the
-# documentation and the quick benchmarks.
+# The everyday tier: under five minutes on two cores.  The lints first (seconds), then side by side
+# (make -j, output kept per target, any failure fails `make test`): the suite (every test once,
+# the numerics ones excepted), the numerics tests under the second kernel, the documentation and
+# the quick benchmarks.  Side by side, not one after the other: the four jobs keep both cores busy
+# to the end, where the numerics tests alone (a few long fits) left one core idle for a minute.
 test: setup
 	$(VENV)/bin/ruff check analysis app tests
 	# the layering contracts in pyproject.toml ([tool.importlinter])
 	$(VENV)/bin/lint-imports --no-cache
+	$(MAKE) --no-print-directory -j4 -Otarget test-suite test-kernel docs bench-quick
+
+# Every test once, except the numerics (test-kernel), slow (test-all) and package (package) ones.
+test-suite: setup
 	$(PYTEST) -m "not slow and not package and not numerics"
-	$(MAKE) --no-print-directory -j3 -Otarget test-kernel docs bench-quick
 
 # The fitting and identification tests (the `numerics` marker, in tests/test_identify_*.py) under
 # the second OpenBLAS kernel.
