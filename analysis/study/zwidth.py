@@ -240,7 +240,9 @@ def zwidth_region_result(request: ZWidthRequest | Profile, *, progress: Progress
 
 
 def trials_path(path: str | os.PathLike | None, base: str | os.PathLike | None = None) -> str | None:
-    """A profile's ``trials`` path, made relative to ``base`` when given.
+    """A profile's ``trials`` path, made relative to ``base`` when given: the one rule by which the
+    command line, the report and the GUI's compute graph find a profile's trials file
+    (:func:`resolve_trials`, :meth:`TrialsRequest.of`).
 
     A relative path is relative to ``base`` (the profile's folder) when given, else to the
     working directory; ``None`` stays ``None``.
@@ -255,13 +257,14 @@ def trials_path(path: str | os.PathLike | None, base: str | os.PathLike | None =
     Returns
     -------
     str or None
-        The path (joined to ``base`` when it is relative and ``base`` is given), or ``None``.
+        The path (joined to the absolute ``base`` when it is relative and ``base`` is given), or
+        ``None``.
     """
     if path is None:
         return None
     path = os.fspath(path)
     if base is not None and not os.path.isabs(path):
-        return os.path.join(os.fspath(base), path)
+        return os.path.join(os.path.abspath(base), path)
     return path
 
 
@@ -285,19 +288,22 @@ def resolve_trials(profile: Profile, base: str | os.PathLike) -> Profile:
     sec = profile.controller
     if sec is None or sec.trials is None or os.path.isabs(sec.trials):
         return profile
-    return profile.replace(controller=sec.replace(trials=trials_path(sec.trials, os.path.abspath(base))))
+    return profile.replace(controller=sec.replace(trials=trials_path(sec.trials, base)))
 
 
 @dataclass(frozen=True)
 class TrialsRequest:
-    """The trials file named by the controller section and its modification time.
+    """The trials file named by the controller section, as an absolute path, and its modification time.
 
-    A rewritten file is read again; ``path`` is ``None`` without a file.
+    The path is resolved when the request is made (:func:`trials_path`: a relative one against the
+    profile's folder, or the working directory without one), so a file in another folder, or the
+    same name seen from another folder, is another request; a rewritten file is read again.
+    ``path`` is ``None`` without a file.
 
     Attributes
     ----------
     path : str or None
-        The trials file, or ``None`` when the section names none.
+        The trials file (absolute), or ``None`` when the section names none.
     mtime_ns : int or None
         The file's modification time [ns], or ``None`` when it cannot be read.
     """
@@ -324,6 +330,7 @@ class TrialsRequest:
         path = trials_path(controller_section(profile).trials, base)
         if path is None:
             return cls(None)
+        path = os.path.abspath(path)
         try:
             return cls(path, os.stat(path).st_mtime_ns)
         except OSError:
@@ -351,7 +358,10 @@ def profile_trials(profile: TrialsRequest | Profile, base: str | os.PathLike | N
         A :class:`~analysis.errors.ValidationError` naming the file, the line and the column for
         a missing, unreadable or malformed file (:class:`~analysis.sampled.TrialsError`).
     """
-    path = trials_path((TrialsRequest.of(profile) if isinstance(profile, Profile) else profile).path, base)
+    if isinstance(profile, Profile):
+        path = TrialsRequest.of(profile, base).path
+    else:
+        path = trials_path(profile.path, base)
     if path is None:
         return None
     return load_trials(path)

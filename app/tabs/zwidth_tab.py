@@ -85,6 +85,7 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         ctx = self.ctx
         self._held: dict[str, Hashable] = {}
         self._errors: dict[str, str] = {}
+        self._trials_error: str | None = None  # why the profile's trials file cannot be used
         self.section = SectionBinding(ctx.model, ctx.editor, "controller", controller_section, "Z-width")
         self.region_view = ZWidthRegionView()
         self.region_view.pointPicked.connect(self.set_wall)
@@ -130,6 +131,7 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         row.addWidget(self.clear_button)
         form.addRow(row)
         self.trials_label = QLabel("No trials imported.")
+        self.trials_label.setTextFormat(Qt.TextFormat.PlainText)  # file names and the reader's messages
         self.trials_label.setWordWrap(True)
         self.trials_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
         form.addRow(self.trials_label)
@@ -260,8 +262,9 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
     def _trials(self) -> Any:
         try:
             return self.ctx.graph.get(TRIALS_NODE)
-        except (ValidationError, OSError) as err:
+        except (ValidationError, OSError) as err:  # the file, the line and the column (analysis.csvtable)
             self._errors[TRIALS_NODE] = f"trials: {err}"
+            self._trials_error = str(err)
             return None
 
     def update_views(self) -> None:
@@ -278,6 +281,7 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         self.encoder.setEnabled(on)
         self.force_noise.setEnabled(on)
         self._errors.pop(TRIALS_NODE, None)
+        self._trials_error = None
         region, opt = self._pull(REGION_NODE), self._pull(OPTIMUM_NODE)
         trials = self._trials()
         study = trial_score(region, trials) if region is not None else None
@@ -291,15 +295,21 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         self.optimum_view.update_filter(sec.velocity_filter)
         self.optimum_view.set_busy(self._busy(OPTIMUM_NODE))
         self._show_offer(opt)
-        self._show_trials(trials, study)
-        self.region_view.set_warning([e for n, e in self._errors.items() if n != OPTIMUM_NODE])
+        self._show_trials(trials, study, self._trials_error)
+        self.region_view.set_errors([e for n, e in self._errors.items() if n != OPTIMUM_NODE])
         if OPTIMUM_NODE in self._errors:
             self.optimum_view.set_warning([self._errors[OPTIMUM_NODE]])
         self.refreshes += 1
         self.stale = False
 
-    def _show_trials(self, trials: Any, study: Any) -> None:
-        if trials is None:
+    def _show_trials(self, trials: Any, study: Any, error: str | None = None) -> None:
+        """The trials line: how many the analysis gets wrong, or why the profile's file is not used."""
+        style = ERROR_STYLE if error else ""
+        if self.trials_label.styleSheet() != style:  # a new style sheet re-polishes the label
+            self.trials_label.setStyleSheet(style)
+        if error:
+            self.trials_label.setText(f"Trials not drawn: the file cannot be used. {error}")
+        elif trials is None:
             self.trials_label.setText("No trials imported.")
         elif study is None or study.score is None:
             self.trials_label.setText(f"{len(trials)} trials from {os.path.basename(trials.path)}")

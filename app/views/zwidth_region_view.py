@@ -62,6 +62,8 @@ class ZWidthRegionView(PickablePlotView):
         self.trials: MeasuredTrials | None = None
         self._series: list[Series] = []
         self._point_note = ""
+        self._notes: list[str] = []
+        self.errors: list[str] = []  # why an input was left out (a trials file that cannot be used)
         self.summary = ""
         self.plot_widget.setToolTip("Click to set the virtual wall (b_c, k_c)")
         self.plot_widget.setMinimumSize(260, 200)
@@ -91,7 +93,7 @@ class ZWidthRegionView(PickablePlotView):
             self.summary += (f";  trials: {score.wrong_count} of {score.scored} predicted wrong"
                              + (f", {score.outside.size} outside the B range" if score.outside.size else ""))
         self._notes = notes
-        self.set_warning([*notes, self._point_note])
+        self._show_warnings()
         self.set_busy(False)
         self.bump()
 
@@ -142,8 +144,17 @@ class ZWidthRegionView(PickablePlotView):
     def update_point(self, b: float, k: float, stable: bool | None) -> None:
         """The current wall ``(b_c, k_c)`` (``stable``: inside the region)."""
         self._point_note = mark_design_point(self.point, b, k, stable, self.palette_colors())
-        self.set_warning([*getattr(self, "_notes", []), self._point_note])
+        self._show_warnings()
         self.bump()
+
+    def set_errors(self, errors: list[str]) -> None:
+        """Say why an input is not drawn (e.g. the trials file's fault: file, line, column), above the
+        region's own notes, which stay; ``[]`` clears them."""
+        self.errors = [e for e in errors if e]
+        self._show_warnings()
+
+    def _show_warnings(self) -> None:
+        self.set_warning([*self.errors, *self._notes, self._point_note])
 
     def restyle(self, pal: dict) -> None:
         self.exact.setPen(pg.mkPen(pal["c"], width=2.5))
@@ -155,7 +166,7 @@ class ZWidthRegionView(PickablePlotView):
         return list(self._series)
 
     def export_notes(self) -> list[str]:
-        notes = super().export_notes()
+        notes = [*super().export_notes(), *self.errors]
         if self.summary:
             notes.append(self.summary.replace("²", "^2").replace("·", " "))
         if self.score is not None and self.trials is not None:

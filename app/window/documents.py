@@ -3,6 +3,9 @@
 :class:`Documents` owns the file path and the preset name, keeps the window title
 (``name[*] — zwidth``) and asks before unsaved changes are lost.  Loading replaces the model's
 profile and clears the undo stack; saving writes atomically (:func:`analysis.profiles.save_profile`).
+The document's folder (:attr:`Documents.folder`) is where a relative path in the profile (its
+trials file) is read from, by the compute graph (:func:`app.core.nodes_zwidth.set_trials_folder`)
+and the report (:func:`app.report.action.document_folder`), as the command line reads it.
 """
 
 from __future__ import annotations
@@ -25,9 +28,12 @@ from analysis.profiles import (
     save_profile,
 )
 
+from app.core.compute_graph import ComputeGraph
 from app.core.model import ProfileModel
+from app.core.nodes_zwidth import set_trials_folder
 from app.core.settings import Settings
 from app.core.worker import TaskRunner
+from app.report.action import document_folder
 
 __all__ = ["Documents", "default_profile", "is_bundled", "write_atomically", "dropped_files", "APP_NAME",
            "PROFILE_FILTER"]
@@ -75,6 +81,18 @@ class Documents(QObject):
         self.path: str | None = None
         self.preset = preset
 
+    @property
+    def folder(self) -> str | None:
+        """The folder a relative trials path is read from: the document file's (a preset's bundled
+        file's), ``None`` for a new document (the working directory)."""
+        return document_folder(self)
+
+    def _sync_folder(self) -> None:
+        """Tell the window's compute graph where a relative trials path is read from now."""
+        graph = getattr(self.window, "graph", None)
+        if isinstance(graph, ComputeGraph):
+            set_trials_folder(graph, self.folder)
+
     def _status(self, message: str) -> None:
         self.window.statusBar().showMessage(message, 5000)
 
@@ -106,10 +124,11 @@ class Documents(QObject):
     def load(self, profile: Profile, path: str | None, preset: str | None) -> None:
         """Show ``profile`` as a fresh, unmodified document."""
         self.runner.cancel_all()
+        self.path, self.preset = path, preset
+        self._sync_folder()  # before the profile: its views then read the trials from its folder
         self.model.replace_profile(profile)
         self.stack.clear()
         self.stack.setClean()
-        self.path, self.preset = path, preset
         self.update_title()
 
     def new_profile(self) -> bool:
@@ -185,6 +204,7 @@ class Documents(QObject):
             QMessageBox.critical(self.window, "Cannot save profile", f"{err}\n\nYour changes are kept.")
             return False
         self.path, self.preset = os.path.abspath(path), None
+        self._sync_folder()  # saved elsewhere: a relative trials path is read as the saved file reads it
         self.stack.setClean()
         self._remember(path)
         self.update_title()
