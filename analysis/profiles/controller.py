@@ -55,8 +55,8 @@ class ControllerSection:
     b_points : int, optional
         Number of B values of the region, 2 to 1000; default :data:`DEFAULT_B_POINTS`.
     trials : str or None, optional
-        Path of a CSV of hardware trials (the command line reads a relative one from the
-        profile's folder: :func:`analysis.study.resolve_trials`), or ``None``.
+        Path of a CSV of hardware trials (the command line and the app read a relative one
+        from the profile's folder: :func:`analysis.study.resolve_trials`), or ``None``.
     encoder_resolution : float or None, optional
         Encoder resolution at the handle [m], 1e-9 to 1e-2; turns on the noise criterion of the
         region. ``None``: off.
