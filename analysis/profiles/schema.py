@@ -12,7 +12,9 @@ above it, so nothing maps names to paths by hand:
   :class:`~analysis.profiles.Profile` at :func:`path_of` the name it carries;
 * :data:`analysis.profiles.SCALAR_FIELDS` (the couplings and gains) is derived from it;
 * a list declared :data:`PER_MASS` (``ground_dampings``, the simulator's ``friction``) is checked
-  against the device's number of masses wherever it sits (:data:`PER_MASS_LISTS`).
+  against the device's number of masses wherever it sits (:data:`PER_MASS_LISTS`), and those of
+  the sections are dropped by :func:`drop_per_mass` when a profile takes a chain of another order
+  (the device ``zwidth identify`` fits: :func:`analysis.study.identify.profile_with_fit`).
 
 The optional sections (``wall``, ``observer``, ``simulation``, ``identification``,
 ``controller``) are validated by their own records (:mod:`analysis.profiles.sections`,
@@ -26,8 +28,10 @@ Numerics only: this module never imports Qt.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator
 from dataclasses import dataclass
+from typing import Any
 
 from analysis.chain.limits import (
     BAND_MIN,
@@ -48,6 +52,8 @@ __all__ = [
     "SCHEMA",
     "FIELDS_BY_NAME",
     "PER_MASS_LISTS",
+    "per_mass_values",
+    "drop_per_mass",
     "GAIN_NAMES",
     "DISPLAYS",
     "walk",
@@ -273,9 +279,22 @@ def _by_name() -> dict[str, tuple[str, Field]]:
 #: API name (a ValidationError's ``field``) -> (JSON path, field), derived from :data:`SCHEMA`.
 FIELDS_BY_NAME: dict[str, tuple[str, Field]] = _by_name()
 
+def _per_mass_lists() -> tuple[tuple[str, Field], ...]:
+    out = tuple((path, node) for path, node in walk() if node.length == PER_MASS and not path.startswith("$.device."))
+    for path, node in out:
+        if not node.empty_ok:  # a profile whose chain changes order must be able to drop it
+            raise ValueError(f"the per-mass list {path} inside a section must allow an empty list")
+    return out
+
+
 #: The per-mass lists inside the optional sections, by JSON path (the device's own are read with it).
-PER_MASS_LISTS: tuple[tuple[str, Field], ...] = tuple(
-    (path, node) for path, node in walk() if node.length == PER_MASS and not path.startswith("$.device."))
+#: This is the one list of them: the loader checks each against the device's masses
+#: (:mod:`analysis.profiles.fields`), and a profile given a chain of another order drops each that
+#: no longer fits (:func:`drop_per_mass`).  A path without its ``$`` is
+#: also the chain of attributes that holds the list on a :class:`~analysis.profiles.Profile`
+#: (``$.simulation.options.friction``: ``profile.simulation.options.friction``), and each allows an
+#: empty list (none: no friction), so that it can always be dropped.
+PER_MASS_LISTS: tuple[tuple[str, Field], ...] = _per_mass_lists()
 
 
 def path_of(name: str) -> str | None:
@@ -293,3 +312,71 @@ def path_of(name: str) -> str | None:
     """
     found = FIELDS_BY_NAME.get(name)
     return None if found is None else found[0]
+
+
+def per_mass_values(record: object) -> dict[str, tuple[float, ...]]:
+    """The per-mass lists a profile holds (:data:`~analysis.profiles.schema.PER_MASS_LISTS`), by JSON path.
+
+    Parameters
+    ----------
+    record : object
+        A :class:`~analysis.profiles.Profile` (any record whose attributes follow the schema's keys).
+
+    Returns
+    -------
+    dict of str to tuple of float
+        JSON path (``"$.simulation.options.friction"``) -> the list's values, for each list whose
+        section is present (an empty tuple: the list is empty).
+    """
+    out: dict[str, tuple[float, ...]] = {}
+    for path, _ in PER_MASS_LISTS:
+        value: Any = record
+        for key in path.split(".")[1:]:
+            value = getattr(value, key, None)
+            if value is None:
+                break
+        if value is not None:
+            out[path] = tuple(float(v) for v in value)
+    return out
+
+
+def _replaced(obj: Any, keys: list[str], value: object) -> Any:
+    """``obj`` with the attribute at the chain ``keys`` set to ``value`` (each record validated again)."""
+    if not keys:
+        return value
+    return dataclasses.replace(obj, **{keys[0]: _replaced(getattr(obj, keys[0]), keys[1:], value)})
+
+
+def drop_per_mass(record: object, n: int) -> tuple[dict[str, Any], dict[str, tuple[float, ...]]]:
+    """The changes that empty every per-mass list of ``record`` that does not hold ``n`` values.
+
+    A list indexed by mass belongs to the chain it was set for: on a chain of another order its
+    values would sit on other masses, so it is dropped (an empty list: none, e.g. no friction)
+    rather than stretched.  Apply the changes with the new device,
+    ``profile.replace(device=new, **changes)``: the loader refuses a per-mass list of another
+    length than the device's masses.
+
+    Parameters
+    ----------
+    record : object
+        A :class:`~analysis.profiles.Profile` before its device changes.
+    n : int
+        The number of masses of the new device.
+
+    Returns
+    -------
+    changes : dict of str to object
+        Profile field -> its new value (e.g. ``{"simulation": SimulationSection}``); empty when
+        every list already fits.
+    dropped : dict of str to tuple of float
+        JSON path -> the values dropped there.
+    """
+    changes: dict[str, Any] = {}
+    dropped: dict[str, tuple[float, ...]] = {}
+    for path, values in per_mass_values(record).items():
+        if not values or len(values) == n:
+            continue
+        top, *rest = path.split(".")[1:]
+        changes[top] = _replaced(changes.get(top, getattr(record, top)), rest, ())
+        dropped[path] = values
+    return changes, dropped

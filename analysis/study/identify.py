@@ -41,11 +41,12 @@ from analysis.identify import (
 )
 from analysis.profiles import Profile
 from analysis.profiles.identification import IdentificationSection, MeasurementData
+from analysis.profiles.schema import drop_per_mass
 from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.study.displays import display_kind
 from analysis.study.quantities import format_number
 
-__all__ = ["BodeData", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "identify_chain", "load_measurements", "parameter_rows",
+__all__ = ["BodeData", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "fit_notes", "identify_chain", "load_measurements", "parameter_rows",
            "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements", "RobustRequest"]
 
 
@@ -250,15 +251,20 @@ def _data(m: Measurement) -> MeasurementData:
 
 def profile_with_fit(profile: Profile, fit: ChainFit, measurements: Sequence[Measurement] | None = None,
                      name: str | None = None) -> Profile:
-    """``profile`` with the fitted device (its band kept) and the identification section.
+    """``profile`` with the fitted device (its band kept), the identification section and notes
+    written for the fit.
 
     The section holds the 95 % intervals of the free parameters, the measurements embedded and
-    the fit's warnings.
+    the fit's warnings.  The notes (:func:`fit_notes`) say what was fitted; the base's notes,
+    which describe its own device, are not kept.  Every list indexed by mass
+    (:data:`analysis.profiles.schema.PER_MASS_LISTS`, the simulator's friction) that does not
+    hold one value per fitted mass is dropped (:func:`analysis.profiles.schema.drop_per_mass`),
+    and the notes say so, so the profile written loads and runs in every command.
 
     Parameters
     ----------
     profile : Profile
-        The profile to update.
+        The profile to update (the base: display, couplings, gains and sections).
     fit : ChainFit
         The fit.
     measurements : sequence of Measurement or None, optional
@@ -271,11 +277,70 @@ def profile_with_fit(profile: Profile, fit: ChainFit, measurements: Sequence[Mea
     Profile
         The updated profile (a new record; ``profile`` is unchanged).
     """
+    used = tuple(measurements or fit.measurements)
     free = {k: iv for k, iv, fixed in zip(fit.keys, fit.intervals.values(), fit.fixed) if not fixed}
-    section = IdentificationSection(free, tuple(_data(m) for m in (measurements or fit.measurements)),
-                                    tuple(fit.warnings))
-    return profile.replace(device=fit.device, identification=section,
+    section = IdentificationSection(free, tuple(_data(m) for m in used), tuple(fit.warnings))
+    changes, dropped = drop_per_mass(profile, fit.device.n)
+    notes = fit_notes(fit, used, profile.name, profile.device.n, dropped)
+    return profile.replace(device=fit.device, identification=section, notes=notes, **changes,
                            **({} if name is None else {"name": name}))
+
+
+def _plural(count: int, word: str) -> str:
+    return f"{count} {word}{'' if count == 1 else 'es' if word.endswith('s') else 's'}"
+
+
+def _values(values: Sequence[float]) -> str:
+    return ", ".join(format_number(float(v)) for v in values)
+
+
+def _measured(m: Measurement) -> str:
+    timing = "continuous-time" if m.sample_time is None else f"sampled at T = {format_number(m.sample_time)} s"
+    source = "" if m.source is None else f"{os.path.basename(m.source)}: "
+    return f"{source}{m.quantity} response, {m.boundary} handle, {_plural(m.size, 'point')}, {timing}"
+
+
+def fit_notes(fit: ChainFit, measurements: Sequence[Measurement], base: str, base_masses: int,
+              dropped: Mapping[str, Sequence[float]] | None = None) -> str:
+    """The profile notes of an identified device: what was fitted, to what, and what the base gave.
+
+    Parameters
+    ----------
+    fit : ChainFit
+        The fit.
+    measurements : sequence of Measurement
+        The measurements fitted.
+    base : str
+        The name of the base profile (its display, couplings, gains and sections are kept).
+    base_masses : int
+        The base device's number of masses.
+    dropped : mapping of str to sequence of float or None, optional
+        The base's per-mass lists dropped (JSON path -> values), see
+        :func:`analysis.profiles.schema.drop_per_mass`.
+
+    Returns
+    -------
+    str
+        One paragraph, free of dates, e.g. ``"Identified by zwidth: a chain of 3 masses fitted to
+        1 measurement (a.csv: actuator response, free handle, 300 points, sampled at T = 0.001 s).
+        ..."``.
+    """
+    d = fit.device
+    parts = [f"Identified by zwidth: a chain of {_plural(d.n, 'mass')} fitted to "
+             f"{_plural(len(measurements), 'measurement')} ({'; '.join(_measured(m) for m in measurements)}).",
+             f"Masses {_values(d.masses)} kg"
+             + (f"; stiffnesses {_values(d.stiffnesses)} N/m; element dampings {_values(d.dampings)} N·s/m"
+                if d.n > 1 else "")
+             + f"; dampings to ground {_values(d.ground_dampings)} N·s/m.",
+             f"Residual {format_number(fit.residual, 3)} (RMS of the weighted log-response)"
+             + ("." if fit.converged else "; the fit did NOT converge."),
+             f"The display, couplings, gains and other settings are those of the base profile \"{base}\" "
+             f"(a chain of {_plural(base_masses, 'mass')})."]
+    for path, values in (dropped or {}).items():
+        parts.append(f"The base's {path} ({_values(values)}: one value per mass of its chain) was dropped, "
+                     f"since the fitted chain has {_plural(d.n, 'mass')}; set it again for this device.")
+    parts += [f"Warning: {w}" for w in fit.warnings]
+    return " ".join(parts)
 
 
 def section_measurements(section: IdentificationSection) -> list[Measurement]:

@@ -160,11 +160,13 @@ class IdentifyTab(AnalysisTab):
 
     @Slot()
     def use_device(self) -> str | None:
-        """The profile's device := the fitted one, with the identification section (one undo step)."""
+        """The profile's device := the fitted one, with the identification section, the fit's notes and
+        the per-mass lists that no longer fit dropped (one undo step)."""
         if self.result is None:
             return "no fit"
         new = profile_with_fit(self.ctx.model.profile, self.result.fit, self.result.measurements)
-        return self.ctx.editor.edit_many({"device": new.device, "identification": new.identification},
+        return self.ctx.editor.edit_many({"device": new.device, "identification": new.identification,
+                                          "notes": new.notes, "simulation": new.simulation},
                                          "Use identified device")
 
     # -- robust designs ---------------------------------------------------------------------------
