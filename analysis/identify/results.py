@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from analysis.chain.device import Device
-from analysis.identify.measurement import Measurement
+from analysis.identify.measurement import BinSelection, Measurement
 
 __all__ = ["ChainFit", "OrderSelection", "Parameter"]
 
@@ -88,6 +88,17 @@ class ChainFit:
         ``" + other optima"`` when widened to equally good optima of the multi-start,
         ``" + handle family"`` when widened to the handles that fit as well as the merged chain
         (:mod:`analysis.identify.hidden`).
+    bins:
+        For each measurement, how many bins were fitted and why the others were not
+        (:class:`~analysis.identify.measurement.BinSelection`); :attr:`bins_summary` in one line.
+        ``residual``, ``rss``, ``n_residuals`` and the criteria count the fitted bins only;
+        ``responses`` are at every bin of ``measurements``.
+    start_rss:
+        Weighted RSS of the optimum reached from the Stieltjes start of the informative band
+        (:mod:`analysis.identify.start`), run to convergence on the same bins as every other
+        candidate: ``rss`` is at most this, unless the reported chain is the merged one of an
+        undetected handle mode (:mod:`analysis.identify.hidden`); ``nan`` without free
+        parameters.
     """
 
     device: Device
@@ -117,6 +128,13 @@ class ChainFit:
     evaluations: int
     starts: int
     interval_methods: tuple[str, ...] = ()
+    bins: tuple[BinSelection, ...] = ()
+    start_rss: float = float("nan")
+
+    @property
+    def bins_summary(self) -> str:
+        """One line: the bins fitted of each measurement and why the others were left out."""
+        return "; ".join(b.summary for b in self.bins)
 
     @property
     def intervals(self) -> dict[str, tuple[float, float]]:

@@ -28,6 +28,7 @@ from scipy import optimize
 from analysis.chain.device import Device
 from analysis.identify.degenerate import SHARES, degenerate_masses, restart
 from analysis.identify.hidden import HANDLE_KEYS, MERGED_SHARE, HiddenHandle, adopt_best, hidden_handle
+from analysis.identify.measurement import Measurement
 from analysis.identify.params import ChainParameters, parse_key
 from analysis.identify.problem import FitProblem
 from analysis.identify.profile import Profiler, curvature_ratios, profile_intervals
@@ -309,10 +310,12 @@ def _at(problem: FitProblem, theta: np.ndarray, rss: float, keys: Sequence[str],
 def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Sequence[str],
               fixed: Mapping[str, float], template: Device, n_starts: int,
               notes: Sequence[str] = (), alternatives: Sequence[np.ndarray] = (),
-              intervals: str = "auto") -> ChainFit:
+              intervals: str = "auto", originals: Sequence[Measurement] | None = None) -> ChainFit:
     """Assemble the :class:`ChainFit` (module doc) from the solver's optimum; ``alternatives`` are
     other local optima of the multi-start (see :func:`widen_to_equivalent_optima`); ``intervals``
-    chooses Wald or profile-likelihood intervals (:func:`profile_selection`)."""
+    chooses Wald or profile-likelihood intervals (:func:`profile_selection`).  ``originals`` are
+    the measurements with every bin (``problem`` holds their informative bins): the fit reports
+    them, with the model's response at all their bins (default: ``problem.measurements``)."""
     theta = np.zeros(0) if sol is None else np.asarray(sol.x, float)
     r = problem.residual(theta)
     rss = float(r @ r)
@@ -348,11 +351,13 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
     floor = max(rss / R, 1e-300)
     aic = R * math.log(floor) + 2 * p
     bic = R * math.log(floor) + p * math.log(R)
-    responses = tuple(h[0] for h in problem.responses(theta))
+    shown = tuple(problem.measurements if originals is None else originals)
+    responses = tuple(h[0] for h in FitProblem(shown, problem.keys, problem.base,
+                                                problem.sensor_element).responses(theta))
     return ChainFit(device=device, keys=tuple(keys), values=v, std_errors=se, log_std=s, lower=lo, upper=hi,
                     fixed=fx, free_keys=problem.keys, covariance=cov, correlation=corr,
                     residual=math.sqrt(rss / R), cost=rss / 2, rss=rss, aic=aic, bic=bic, n_residuals=R,
-                    dof=R - p, responses=responses, measurements=problem.measurements, non_identifiable=bad,
+                    dof=R - p, responses=responses, measurements=shown, non_identifiable=bad,
                     suggestions=sugg, warnings=tuple(warnings), converged=converged,
                     evaluations=0 if sol is None else int(sol.nfev), starts=n_starts,
-                    interval_methods=tuple(methods))
+                    interval_methods=tuple(methods), bins=tuple(m.bins for m in shown))

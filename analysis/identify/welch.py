@@ -7,6 +7,13 @@ on the output; the magnitude-squared coherence ``|P_fx|^2 / (P_ff P_xx)`` says w
 estimate can be trusted (its random error is about ``sqrt((1 - g^2) / (2 n_d g^2))`` for
 ``n_d`` averages, which is why :meth:`~analysis.identify.Measurement.weights` uses
 ``g^2 / (1 - g^2)``).
+
+Each bin is judged informative or not by its coherence and its input power
+(:func:`analysis.identify.measurement.informative_bins`): the estimate carries the force's
+auto-spectrum ``P_ff`` for that.  By default the segments tile the whole record
+(:func:`tiling_overlap`): scipy drops the samples after the last whole segment, which with a
+fixed 50 % overlap can be most of a segment -- the last second of a 40 s chirp, where a sweep
+spends its top frequencies.
 """
 
 from __future__ import annotations
@@ -19,7 +26,7 @@ from scipy import signal
 from analysis.identify.errors import MeasurementError
 from analysis.identify.measurement import Measurement, make_measurement
 
-__all__ = ["estimate_frf", "default_segment", "nonuniform_sample"]
+__all__ = ["estimate_frf", "default_segment", "nonuniform_sample", "tiling_overlap"]
 
 
 def default_segment(n: int) -> int:
@@ -27,6 +34,16 @@ def default_segment(n: int) -> int:
     overlap gives about 15 averages), at least 64 samples and at most ``n``."""
     seg = 2 ** max(int(math.floor(math.log2(max(n, 1) / 8))), 6)
     return min(seg, n)
+
+
+def tiling_overlap(n: int, seg: int) -> int:
+    """The overlap (samples, at least half a segment) whose segments of ``seg`` samples cover a
+    record of ``n`` samples to within fewer samples than there are segments: the fewest segments
+    ``K`` with steps of at most ``seg / 2``, step ``floor((n - seg) / (K - 1))``."""
+    if n <= seg:
+        return seg // 2
+    k = -(-(n - seg) // max(seg // 2, 1)) + 1
+    return seg - (n - seg) // (k - 1)
 
 
 def _check(t: np.ndarray, force: np.ndarray, position: np.ndarray, source: str | None) -> float:
@@ -64,8 +81,11 @@ def estimate_frf(t, force, position, quantity: str = "actuator", boundary: str =
 
     ``t`` must be uniformly sampled.  ``sample_time`` marks a measurement taken through the
     sampled controller (force held by a ZOH, response sampled); it must equal the time step.
-    ``nperseg`` defaults to :func:`default_segment`, ``noverlap`` to half a segment.  The DC bin
-    (and, for sampled data, the Nyquist bin) is dropped.
+    ``nperseg`` defaults to :func:`default_segment`, ``noverlap`` to the overlap of at least half
+    a segment whose segments cover the whole record (:func:`tiling_overlap`).  The DC bin
+    (and, for sampled data, the Nyquist bin) is dropped.  The estimate carries the force's
+    auto-spectrum, and each bin is marked informative or not by its coherence and input power
+    (:attr:`Measurement.informative`, :attr:`Measurement.bins`).
 
     Parameters
     ----------
@@ -88,7 +108,8 @@ def estimate_frf(t, force, position, quantity: str = "actuator", boundary: str =
     nperseg : int or None, optional
         Welch segment length [samples], 8 to N; ``None``: :func:`default_segment`.
     noverlap : int or None, optional
-        Overlap of the segments [samples], ``0 <= noverlap < nperseg``; ``None``: half a segment.
+        Overlap of the segments [samples], ``0 <= noverlap < nperseg``; ``None``: at least half a
+        segment, so that the segments cover the record (:func:`tiling_overlap`).
     window : str, optional
         Window of :func:`scipy.signal.welch`.
     source : str or None, optional
@@ -98,7 +119,7 @@ def estimate_frf(t, force, position, quantity: str = "actuator", boundary: str =
     -------
     Measurement
         The H1 estimate at the positive frequencies [rad/s] below Nyquist where the force has
-        content, with coherence.
+        content, with coherence, input power and the informative bins.
 
     Raises
     ------
@@ -119,7 +140,7 @@ def estimate_frf(t, force, position, quantity: str = "actuator", boundary: str =
     if not 8 <= seg <= t.size:
         raise MeasurementError(f"nperseg = {nperseg!r}: must be between 8 and the record length {t.size}",
                                file=source)
-    ov = seg // 2 if noverlap is None else int(noverlap)
+    ov = tiling_overlap(t.size, seg) if noverlap is None else int(noverlap)
     if not 0 <= ov < seg:
         raise MeasurementError(f"noverlap = {noverlap!r}: must be >= 0 and < nperseg = {seg}", file=source)
     fs = 1.0 / dt
@@ -137,4 +158,4 @@ def estimate_frf(t, force, position, quantity: str = "actuator", boundary: str =
     coh = np.clip(np.nan_to_num(coh, nan=0.0), 0.0, 1.0)
     nz = h != 0
     return make_measurement(2 * math.pi * freq[keep][nz], h[nz], quantity, boundary, sample_time, delay_samples,
-                            coh[nz], source=source)
+                            coh[nz], source=source, input_power=pff[keep][nz])
