@@ -107,9 +107,11 @@ def test_drop_per_mass_empties_every_list_that_does_not_fit():
 
 
 def test_fit_notes_say_when_the_fit_did_not_converge_and_its_warnings(fitted):
+    """And which parameters were fixed rather than fitted."""
     measurements = load_measurements([fitted[0]], sample_time=TRUTH.sample_time)
     fit = identify_chain(measurements, 3, sample_time=TRUTH.sample_time).fit
     assert "did NOT converge" not in fit_notes(fit, measurements, "base", 4)
+    assert "fixed, not fitted" not in fit_notes(fit, measurements, "base", 4)
     bad = dataclasses.replace(fit, converged=False, warnings=("masses[1] is not identifiable",))
     text = fit_notes(bad, measurements, "base", 4)
     assert "did NOT converge" in text and "Warning: masses[1] is not identifiable" in text
@@ -154,3 +156,11 @@ def test_a_wrong_length_friction_list_is_refused_by_every_command(fitted, tmp_pa
     assert f"{FRICTION}: expected a list of exactly 3 values (one per mass" in r.stderr
     assert "got a list of 4 items" in r.stderr
     assert not (tmp_path / "r.html").exists() and not (tmp_path / "m.png").exists()
+
+
+def test_fit_notes_name_the_fixed_parameters(fitted):
+    measurements = load_measurements([fitted[0]], sample_time=TRUTH.sample_time)
+    fit = identify_chain(measurements, 3, {"ground_dampings[2]": 3.0}, sample_time=TRUTH.sample_time).fit
+    text = fit_notes(fit, measurements, "base", 4)
+    assert "(ground_dampings[2] = 3 fixed, not fitted)" in text
+    assert "3 masses" in text

@@ -326,12 +326,14 @@ def fit_notes(fit: ChainFit, measurements: Sequence[Measurement], base: str, bas
         ..."``.
     """
     d = fit.device
+    fixed = ", ".join(f"{p.key} = {format_number(p.value)}" for p in fit.parameters if p.fixed)
     parts = [f"Identified by zwidth: a chain of {_plural(d.n, 'mass')} fitted to "
              f"{_plural(len(measurements), 'measurement')} ({'; '.join(_measured(m) for m in measurements)}).",
              f"Masses {_values(d.masses)} kg"
              + (f"; stiffnesses {_values(d.stiffnesses)} N/m; element dampings {_values(d.dampings)} N·s/m"
                 if d.n > 1 else "")
-             + f"; dampings to ground {_values(d.ground_dampings)} N·s/m.",
+             + f"; dampings to ground {_values(d.ground_dampings)} N·s/m"
+             + (f" ({fixed} fixed, not fitted)." if fixed else "."),
              f"Residual {format_number(fit.residual, 3)} (RMS of the weighted log-response)"
              + ("." if fit.converged else "; the fit did NOT converge."),
              f"The display, couplings, gains and other settings are those of the base profile \"{base}\" "
