@@ -128,7 +128,7 @@ def test_analyze_json_shape(capsys):
     verdict = {"stable", "stability_reserve", "binding_frequency", "worst_margin", "worst_frequency", "min_eta",
                "k_max", "b_min", "apparent_mass", "apparent_damping"}
     assert set(d["impedance"]) == verdict | {"coupling", "design"}
-    assert set(d["impedance"]["design"]) == {"bc", "kc_max", "frequency", "margin"}
+    assert set(d["impedance"]["design"]) == {"bc", "kc_max", "frequency", "margin", "beyond_limit", "beyond"}
     assert set(d["admittance"]) == verdict | {"coupling", "pd", "design"}
     assert set(d["admittance"]["design"]) == {"feasible_damping", "min_mass"}
 

@@ -4,6 +4,8 @@
   profile's display string);
 * :mod:`.quantities` -- names, units and the one rule that prints a number;
 * :mod:`.headline` -- the verdict, the impedance range and the designs (eq. 9/21, 11-12/23-24);
+* :mod:`.design_limits` -- designs beyond the physical range of the field they would set (the
+  loader's own limits), reported as "beyond the physical range" and never applied (issue 22);
 * :mod:`.compute` -- stability, designs, design chart, exact sampled-data limits, stability
   map and simulation, with progress and cancel hooks;
 * :mod:`.wall` -- the wall controller and the disturbance observer of Eom, Suh & Yi;
@@ -32,6 +34,15 @@ from .requests import (
     StabilityRequest,
 )
 from .quantities import DIGITS, QUANTITIES, Quantity, format_number, quantity, rich_numbers, superscript_numbers
+from .design_limits import (
+    BEYOND,
+    DESIGN_FIELDS,
+    BeyondLimit,
+    beyond_limit,
+    design_beyond_limits,
+    edits_beyond_limits,
+    field_limit,
+)
 from .headline import DESIGN_KEYS, HEADLINE_KEYS, Headline, designs, headline
 from .compute import (
     DESIGN_CHART,
@@ -127,6 +138,8 @@ __all__ = [
     "ADMITTANCE", "DISPLAY_KINDS", "IMPEDANCE", "DisplayKind", "Gain", "display_kind",
     "DIGITS", "QUANTITIES", "Quantity", "format_number", "quantity", "rich_numbers", "superscript_numbers",
     "DESIGN_KEYS", "HEADLINE_KEYS", "Headline", "designs", "headline",
+    "BEYOND", "DESIGN_FIELDS", "BeyondLimit", "beyond_limit", "design_beyond_limits", "edits_beyond_limits",
+    "field_limit",
     "DESIGN_CHART", "EXACT_CHART", "MAP_POINTS", "ChartResult", "delays", "design_chart", "design_radius", "exact_chart",
     "exact_limit", "feasible_damping", "map_arguments", "map_params", "map_point", "max_stiffness", "min_mass",
     "scenario_matches", "simulation", "simulation_section", "stability", "stability_map_result",

@@ -4,7 +4,9 @@ One record, :class:`Headline`, holds what the GUI verdict, ``zwidth analyze`` an
 show first: unconditional stability (eq. 9 or 21 of Adams, Moreyra & Hannaford), the stability
 reserve and the frequency where it binds, the worst margin, the smallest Llewellyn factor
 (eq. 3), k_max and b_min (eq. 11-12 or 23-24), and the designs (the largest k_c at the
-current b_c; the feasible b_c interval at the current m_c and the smallest m_c).
+current b_c; the feasible b_c interval at the current m_c and the smallest m_c).  A design value
+outside the physical range of the field it would set is flagged (:attr:`Headline.beyond_limits`)
+and printed as "beyond the physical range" (:mod:`analysis.study.design_limits`).
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from analysis.profiles.model import Profile
+from analysis.study.design_limits import BeyondLimit, design_beyond_limits
 from analysis.study.displays import DISPLAY_KINDS, DisplayKind, display_kind
 from analysis.study.quantities import Quantity, quantity
 from analysis.twoport.admittance import AdmittanceDisplay
@@ -60,6 +63,10 @@ class Headline:
     designs : dict of str to float or None
         The design values by key (see :func:`designs`); ``None`` for an infeasible design; empty
         when the designs were not computed.
+    beyond_limits : dict of str to BeyondLimit
+        The design keys whose value lies outside the physical range of the profile field it would
+        set (derived from :attr:`designs`; :func:`~analysis.study.design_limits.design_beyond_limits`).
+        Their numbers stay in :attr:`designs`; :meth:`text` prints the phrase instead.
     """
 
     kind: DisplayKind
@@ -74,6 +81,10 @@ class Headline:
     apparent_mass: float
     apparent_damping: float
     designs: dict[str, float | None] = field(default_factory=dict)
+    beyond_limits: dict[str, BeyondLimit] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "beyond_limits", design_beyond_limits(self.designs))
 
     @classmethod
     def from_result(cls, result: StabilityResult, designs: dict[str, float | None] | None = None) -> Headline:
@@ -168,8 +179,11 @@ class Headline:
         Returns
         -------
         str
-            The value printed by :meth:`Quantity.format`.
+            The value printed by :meth:`Quantity.format`, or "beyond the physical range (b_c ≤
+            1e+08 N·s/m)" for a design key of :attr:`beyond_limits`.
         """
+        if key in self.beyond_limits:
+            return self.beyond_limits[key].text(rich=rich)
         return self.quantity(key).format(self.value(key), unit=unit, rich=rich)
 
     def rows(self) -> list[tuple[Quantity, Any]]:

@@ -43,6 +43,7 @@ from analysis.profiles import Profile
 from analysis.profiles.identification import IdentificationSection, MeasurementData
 from analysis.profiles.schema import drop_per_mass
 from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
+from analysis.study.design_limits import BeyondLimit, design_beyond_limits
 from analysis.study.displays import display_kind
 from analysis.study.quantities import format_number
 
@@ -428,6 +429,21 @@ class RobustDesigns:
     holds: bool
     unbounded: tuple[str, ...] = ()
 
+    @property
+    def beyond_limits(self) -> dict[str, BeyondLimit]:
+        """The robust design values outside the physical range of the field they would set:
+        ``"kc_max"`` (the robust largest k_c) or ``"bc_low"``/``"bc_high"`` (the robust b_c
+        interval's edges) -> the crossing (:mod:`analysis.study.design_limits`)."""
+        if self.stiffness is not None:
+            return design_beyond_limits({"kc_max": self.stiffness.kc})
+        if self.damping is not None:
+            return design_beyond_limits({"bc_low": self.damping.low, "bc_high": self.damping.high})
+        return {}
+
+    def _value(self, key: str, value: float | None) -> str:
+        beyond = self.beyond_limits.get(key)
+        return format_number(value) if beyond is None else beyond.text()
+
     def verdict(self) -> str:
         """One line for the verdict: whether the current coupling holds for the whole box.
 
@@ -443,11 +459,13 @@ class RobustDesigns:
         box = f"the whole box ({n} parameter interval{'s' if n != 1 else ''})"
         if self.impedance:
             kc = self.stiffness.kc if self.stiffness else None
-            limit = "no k_c" if kc is None else f"k_c ≤ {format_number(kc)} N/m"
+            limit = ("no k_c" if kc is None else f"k_c {self._value('kc_max', kc)}" if "kc_max" in self.beyond_limits
+                     else f"k_c ≤ {format_number(kc)} N/m")
             word = "holds" if self.holds else "does NOT hold"
             return f"k_c = {format_number(self.coupling)} N/m {word} for {box}: robust {limit}"
         lo, hi = (self.damping.low, self.damping.high) if self.damping else (None, None)
-        limit = "no b_c" if lo is None else f"b_c in [{format_number(lo)}, {format_number(hi)}] N·s/m"
+        limit = ("no b_c" if lo is None else f"b_c in [{format_number(lo)}, {format_number(hi)}] N·s/m"
+                 if not self.beyond_limits else f"b_c in [{self._value('bc_low', lo)}, {self._value('bc_high', hi)}]")
         word = "holds" if self.holds else "does NOT hold"
         return f"b_c = {format_number(self.coupling)} N·s/m {word} for {box}: robust {limit}"
 

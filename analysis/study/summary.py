@@ -16,6 +16,7 @@ import numpy as np
 
 from analysis.profiles.model import Profile
 from analysis.study.compute import design_chart
+from analysis.study.design_limits import design_beyond_limits
 from analysis.study.displays import ADMITTANCE, IMPEDANCE, DisplayKind, display_kind
 from analysis.study.headline import Headline, designs, headline
 from analysis.study.quantities import format_number, quantity
@@ -41,20 +42,45 @@ def _verdict(h: Headline) -> dict[str, Any]:
     }
 
 
+def _flagged(out: dict[str, Any], d: dict[str, Any], keys: dict[str, str]) -> dict[str, Any]:
+    """``out`` with ``beyond_limit`` (any value outside its field's physical range) and ``beyond``
+    (JSON key -> "beyond the physical range (b_c ≤ 1e+08 N·s/m)"); ``keys``: design key -> JSON key.
+    The numbers stay as they are (docs/results.md)."""
+    found = design_beyond_limits({k: d[k] for k in keys})
+    out["beyond_limit"] = bool(found)
+    out["beyond"] = {keys[k]: b.text() for k, b in found.items()}
+    return out
+
+
 def _impedance_design(d: dict[str, Any]) -> dict[str, Any]:
-    return {"bc": d["bc"], "kc_max": d["kc_max"], "frequency": d["kc_max_frequency"], "margin": d["kc_max_margin"]}
+    return _flagged({"bc": d["bc"], "kc_max": d["kc_max"], "frequency": d["kc_max_frequency"],
+                     "margin": d["kc_max_margin"]}, d, {"kc_max": "kc_max"})
 
 
 def _feasible_damping(d: dict[str, Any]) -> dict[str, Any]:
-    return {"mc": d["mc"], "low": d["bc_low"], "high": d["bc_high"], "low_frequency": d["bc_low_frequency"],
-            "high_frequency": d["bc_high_frequency"]}
+    return _flagged({"mc": d["mc"], "low": d["bc_low"], "high": d["bc_high"], "low_frequency": d["bc_low_frequency"],
+                     "high_frequency": d["bc_high_frequency"]}, d, {"bc_low": "low", "bc_high": "high"})
 
 
 def _min_mass(d: dict[str, Any]) -> dict[str, Any] | None:
     if d["min_mc"] is None:
         return None
-    return {"mc": d["min_mc"], "bc": d["min_mc_bc"], "frequency": d["min_mc_frequency"],
-            "low": d["min_mc_bc_low"], "high": d["min_mc_bc_high"]}
+    return _flagged({"mc": d["min_mc"], "bc": d["min_mc_bc"], "frequency": d["min_mc_frequency"],
+                     "low": d["min_mc_bc_low"], "high": d["min_mc_bc_high"]}, d,
+                    {"min_mc": "mc", "min_mc_bc": "bc", "min_mc_bc_low": "low", "min_mc_bc_high": "high"})
+
+
+def _v(d: dict[str, Any], json_key: str, key: str) -> str:
+    """``d[json_key]`` printed as the quantity ``key``, or the phrase when it is beyond its limit."""
+    beyond = d.get("beyond", {}).get(json_key)
+    return beyond.replace("·", " ") if beyond else _q(key, d[json_key])
+
+
+def _interval(d: dict[str, Any]) -> str:
+    """The feasible b_c interval ``[low, high] N s/m``, an end beyond its limit as the phrase."""
+    if not d.get("beyond"):
+        return f"[{_n(d['low'])}, {_n(d['high'])}] N s/m"
+    return f"[{_v(d, 'low', 'bc_low')}, {_v(d, 'high', 'bc_high')}]"
 
 
 def _profile(profile: Profile) -> dict[str, Any]:
@@ -168,16 +194,16 @@ def format_summary(d: dict[str, Any]) -> str:
         "",
         f"Impedance display, coupling k_c = {_q('kc', i['coupling']['kc'])}, b_c = {_q('bc', i['coupling']['bc'])}",
         *_verdict_lines(i, IMPEDANCE),
-        f"  design: largest k_c for b_c = {_q('bc', g['bc'])}: {_q('kc_max', g['kc_max'])}"
+        f"  design: largest k_c for b_c = {_q('bc', g['bc'])}: {_v(g, 'kc_max', 'kc_max')}"
         f" (binds at {_q('kc_max_frequency', g['frequency'])})",
         "",
         f"Admittance display, coupling m_c = {_q('mc', a['coupling']['mc'])}, b_c = {_q('bc', a['coupling']['bc'])},"
         f" PD k_p = {_q('kp', a['pd']['kp'])}, k_d = {_q('kd', a['pd']['kd'])}",
         *_verdict_lines(a, ADMITTANCE),
         f"  design: feasible b_c for m_c = {_q('mc', fd['mc'])}: "
-        + ("none" if fd["low"] is None else f"[{_n(fd['low'])}, {_n(fd['high'])}] N s/m"),
+        + ("none" if fd["low"] is None else _interval(fd)),
         "  design: smallest m_c: " + ("not found" if mm is None else
-                                      f"{_q('min_mc', mm['mc'])} with b_c = {_q('min_mc_bc', mm['bc'])}"
+                                      f"{_v(mm, 'mc', 'min_mc')} with b_c = {_v(mm, 'bc', 'min_mc_bc')}"
                                       f" (binds at {_q('min_mc_frequency', mm['frequency'])})"),
     ]
     return "\n".join(lines)
@@ -256,7 +282,7 @@ def format_design(d: dict[str, Any]) -> str:
             f"  b_c = {_q('bc', g['bc'])}: "
             + (f"no k_c satisfies eq. 9 (the bound is exceeded at {_q('kc_max_frequency', g['frequency'])})"
                if g["kc_max"] is None else
-               f"k_c <= {_q('kc_max', g['kc_max'])} (binds at {_q('kc_max_frequency', g['frequency'])})"),
+               f"k_c <= {_v(g, 'kc_max', 'kc_max')} (binds at {_q('kc_max_frequency', g['frequency'])})"),
             "",
             "  design chart:      b_c (N s/m)     largest k_c (N/m)   binding (rad/s)",
         ]
@@ -268,9 +294,9 @@ def format_design(d: dict[str, Any]) -> str:
         f"Admittance display (PD k_p = {_q('kp', d['pd']['kp'])}, k_d = {_q('kd', d['pd']['kd'])}):"
         " couplings satisfying eq. 21",
         f"  m_c = {_q('mc', fd['mc'])}: "
-        + ("no b_c satisfies eq. 21" if fd["low"] is None else f"b_c in [{_n(fd['low'])}, {_n(fd['high'])}] N s/m"),
+        + ("no b_c satisfies eq. 21" if fd["low"] is None else f"b_c in {_interval(fd)}"),
         "  smallest m_c: " + ("not found" if mm is None else
-                              f"{_q('min_mc', mm['mc'])} with b_c = {_q('min_mc_bc', mm['bc'])}"),
+                              f"{_v(mm, 'mc', 'min_mc')} with b_c = {_v(mm, 'bc', 'min_mc_bc')}"),
     ]
     if d["chart"]:
         lines += ["", "  feasible region:   m_c (kg)        b_c low (N s/m)    b_c high (N s/m)"]

@@ -232,8 +232,11 @@ def _headline_part(h: Headline, table: dict[str, tuple[str, str]], keys: tuple[s
         if key not in table:
             continue
         q, value = h.quantity(key), h.value(key)
-        numbers[table[key][0]] = (None if value is None else float(value), q.number(value))
-        rows.append(Row(q.name, table[key][1], q.number(value, rich=True), _unit(value, q.unit)))
+        beyond = h.beyond_limits.get(key)  # a design outside its field's physical range: the phrase
+        numbers[table[key][0]] = (None if value is None else float(value),
+                                  q.number(value) if beyond is None else beyond.text())
+        rows.append(Row(q.name, table[key][1], q.number(value, rich=True), _unit(value, q.unit)) if beyond is None
+                    else Row(q.name, table[key][1], beyond.text(rich=True), ""))
     return Part((Section(title, paragraphs, tuple(rows)),), numbers)
 
 

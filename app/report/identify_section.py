@@ -14,7 +14,7 @@ import re
 from typing import Any
 
 from analysis.profiles import Profile
-from analysis.study import RobustDesigns, fit_curves, format_number, robust_designs
+from analysis.study import BeyondLimit, RobustDesigns, fit_curves, format_number, robust_designs
 from app.report.model import Numbers, Part, Row, Section
 
 __all__ = ["identification_part", "parameter_label"]
@@ -52,28 +52,38 @@ def _rows(profile: Profile, numbers: Numbers) -> tuple[Row, ...]:
     return tuple(rows)
 
 
+def _robust_row(numbers: Numbers, key: str, label: str, value: float | None, beyond: BeyondLimit | None,
+                unit: str) -> Row:
+    """One robust design row: the number, or the phrase when it is beyond its field's physical range."""
+    text = format_number(value) if beyond is None else beyond.text()
+    numbers[key] = (value, text)
+    return Row(label, "", text if beyond is None else beyond.text(rich=True), unit if beyond is None else "")
+
+
 def _robust_rows(rd: RobustDesigns | None, numbers: Numbers) -> tuple[tuple[Row, ...], str]:
     if rd is None:
         return (), ""
     rows = []
     if rd.unbounded:
         return (), f"<b class='bad'>{html.escape(rd.verdict())}</b>"
+    beyond = rd.beyond_limits  # a robust design outside its field's physical range: the phrase
     if rd.impedance:
         s = rd.stiffness
-        for key, label, value in (("robust.kc", "robust largest k<sub>c</sub> (eq. 9, whole box)", s.kc),
-                                  ("robust.nominal_kc", "nominal largest k<sub>c</sub> (profile's device)",
-                                   s.nominal_kc)):
-            numbers[key] = (value, format_number(value))
-            rows.append(Row(label, "", format_number(value), "N/m"))
+        for key, label, value, design in (("robust.kc", "robust largest k<sub>c</sub> (eq. 9, whole box)", s.kc,
+                                           "kc_max"),
+                                          ("robust.nominal_kc", "nominal largest k<sub>c</sub> (profile's device)",
+                                           s.nominal_kc, "")):
+            rows.append(_robust_row(numbers, key, label, value, beyond.get(design), "N/m"))
         numbers["robust.bc"] = (s.bc, format_number(s.bc))
         rows.append(Row("at coupling damping b<sub>c</sub>", "", format_number(s.bc), "N&middot;s/m"))
         binding = s.binding
     else:
         d = rd.damping
-        for key, label, value in (("robust.bc_low", "robust b<sub>c</sub>, lower edge (eq. 21)", d.low),
-                                  ("robust.bc_high", "robust b<sub>c</sub>, upper edge (eq. 21)", d.high)):
-            numbers[key] = (value, format_number(value))
-            rows.append(Row(label, "", format_number(value), "N&middot;s/m"))
+        for key, label, value, design in (("robust.bc_low", "robust b<sub>c</sub>, lower edge (eq. 21)", d.low,
+                                           "bc_low"),
+                                          ("robust.bc_high", "robust b<sub>c</sub>, upper edge (eq. 21)", d.high,
+                                           "bc_high")):
+            rows.append(_robust_row(numbers, key, label, value, beyond.get(design), "N&middot;s/m"))
         binding = {**d.low_binding}
     for key, value in binding.items():
         label, unit = parameter_label(key)

@@ -177,14 +177,22 @@ class IdentifyTab(AnalysisTab):
             return
         color = "#237032" if designs.holds else "#c92a2a"
         extra = ""
+        beyond = designs.beyond_limits  # a value beyond its field's physical range: the phrase (issue 22)
+
+        def value(key: str, v: float, unit: str) -> str:
+            return beyond[key].text(rich=True) if key in beyond else f"{_rich(v)} {unit}"
+
         if designs.stiffness is not None and designs.stiffness.kc is not None:
             b = ", ".join(f"{k} = {_rich(v)}" for k, v in designs.stiffness.binding.items())
             nominal = designs.stiffness.nominal_kc
             extra = (f"<br>Robust largest k<sub>c</sub> at b<sub>c</sub> = {designs.stiffness.bc:g} N·s/m: "
-                     f"{_rich(designs.stiffness.kc)} N/m (nominal {_rich(nominal)} N/m); binding device: {b}")
+                     f"{value('kc_max', designs.stiffness.kc, 'N/m')} (nominal {_rich(nominal)} N/m); "
+                     f"binding device: {b}")
         elif designs.damping is not None and designs.damping.low is not None:
             extra = (f"<br>Robust b<sub>c</sub> interval for m<sub>c</sub> = {designs.damping.mc:g} kg: "
-                     f"[{_rich(designs.damping.low)}, {_rich(designs.damping.high)}] N·s/m")
+                     + (f"[{_rich(designs.damping.low)}, {_rich(designs.damping.high)}] N·s/m" if not beyond else
+                        f"[{value('bc_low', designs.damping.low, 'N·s/m')}, "
+                        f"{value('bc_high', designs.damping.high, 'N·s/m')}]"))
         self.robust.setText(f"<b style='color:{color}'>{designs.verdict()}</b>{extra}")
 
     def update_views(self) -> None:

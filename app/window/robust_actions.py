@@ -7,7 +7,9 @@ the verdict's line saying whether the current coupling holds for the whole box.
   eq. (21) for every device in the box at the current m_c (its lower edge × 2 when unbounded).
 
 Both read the ``robust_designs`` node (:mod:`app.core.nodes_identify`, on the worker) and apply
-their change as one undo step.
+their change as one undo step.  A change outside the physical range of its field (the loader's own
+limits, :func:`analysis.study.edits_beyond_limits`) is never applied: the action is disabled with a
+tooltip saying "beyond the physical range" and which limit (issue 22).
 """
 
 from __future__ import annotations
@@ -19,15 +21,16 @@ from PySide6.QtCore import QObject, Slot
 from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QMainWindow, QMenu
 
-from analysis.study import RobustDesigns, display_kind
+from analysis.study import BeyondLimit, RobustDesigns, display_kind, edits_beyond_limits
 
 from app.core import nodes_identify
 from app.core.commands import Editor
 from app.core.compute_graph import ComputeGraph
 from app.core.model import ProfileModel
 from app.core.nodes_identify import ROBUST_NODE
+from app.window.design_actions import refusal_tip, show_tips
 
-__all__ = ["RobustActions", "robust_changes"]
+__all__ = ["RobustActions", "robust_changes", "robust_beyond"]
 
 
 def robust_changes(designs: RobustDesigns) -> tuple[dict[str, float], str] | None:
@@ -42,6 +45,13 @@ def robust_changes(designs: RobustDesigns) -> tuple[dict[str, float], str] | Non
         return None
     bc = math.sqrt(d.low * d.high) if math.isfinite(d.high) else 2.0 * d.low
     return {"bc_adm": bc}, f"b_c = {bc:.6g} N·s/m, inside the robust interval [{d.low:.6g}, {d.high:.6g}]"
+
+
+def robust_beyond(designs: RobustDesigns | None) -> BeyondLimit | None:
+    """Why the robust design's edits cannot be applied (a value beyond its field's physical range);
+    ``None`` when they can, or when there is nothing to apply."""
+    change = robust_changes(designs) if designs is not None else None
+    return None if change is None else edits_beyond_limits(change[0])
 
 
 class RobustActions(QObject):
@@ -77,8 +87,14 @@ class RobustActions(QObject):
     def update_enabled(self) -> None:
         has_box = bool(self.model.profile.identification and self.model.profile.identification.intervals)
         imp = display_kind(self.model.profile).is_impedance
-        self.kc_action.setEnabled(has_box and imp)
-        self.bc_action.setEnabled(has_box and not imp)
+        fresh = has_box and self.graph.is_fresh(ROBUST_NODE)
+        beyond = robust_beyond(self.graph.result(ROBUST_NODE)[0]) if fresh else None
+        for action, offered in ((self.kc_action, has_box and imp), (self.bc_action, has_box and not imp)):
+            refused = offered and beyond is not None
+            action.setEnabled(offered and not refused)
+            action.setToolTip(refusal_tip(beyond) if refused and beyond is not None else action.statusTip())
+            if refused:
+                show_tips(action)
         if not has_box and self.verdict is not None and hasattr(self.verdict, "update_robust"):
             self.verdict.update_robust(None, True)
         elif has_box:
@@ -99,6 +115,11 @@ class RobustActions(QObject):
                       "No coupling satisfies the bound for every device in the parameter box", 8000)
             return
         edits, message = change
+        beyond = edits_beyond_limits(edits)
+        if beyond is not None:
+            self._say(f"Robust design not applied: it is {beyond.text()}", 8000)
+            self.update_enabled()
+            return
         self.editor.edit_many(edits, "Robust design")
         self._say(message, 8000)
 
@@ -112,6 +133,7 @@ class RobustActions(QObject):
         if name != ROBUST_NODE or not self.graph.is_fresh(ROBUST_NODE):
             return
         designs = self.graph.result(ROBUST_NODE)[0]
+        self.update_enabled()
         if self.verdict is not None and hasattr(self.verdict, "update_robust"):
             self.verdict.update_robust(None if designs is None else designs.verdict(),
                                        True if designs is None else designs.holds)
