@@ -2,6 +2,10 @@
 
 Method
 ------
+0. Bins: only the informative bins of each measurement are fitted (coherence and input power,
+   :func:`analysis.identify.measurement.informative_bins`; an FRF without either: every bin);
+   everything below -- the start, every candidate's RSS, the intervals -- sees those bins only.
+   :attr:`ChainFit.bins` says how many were used and why the others were not.
 1. Unknowns: ``n`` masses, ``n - 1`` stiffnesses, ``n - 1`` element dampings and the selected
    ground dampings (default: the actuator mass, ``n - 1``), minus the ``fixed`` ones; they are
    fitted as ``theta = log(value)`` (:mod:`analysis.identify.problem`).
@@ -10,7 +14,11 @@ Method
    inverse; pairs it does not show are placed at peaks of the other measurements or where a fit
    without them misses most, plus seeded candidates).  Every candidate gets a short
    Levenberg-Marquardt run (:func:`scipy.optimize.least_squares`, ``method="lm"``), the best two
-   are run to convergence and the lower cost wins.  Without an ``actuator``/``free``
+   are run to convergence and the lower cost wins.  The Stieltjes start of the informative band
+   (the first data-derived candidate) is always among those run to convergence, whatever its
+   short run gave: every candidate's weighted RSS is compared on the same bins, and the result
+   is never worse than the optimum reached from the data's own spectrum
+   (:attr:`ChainFit.start_rss`).  Without an ``actuator``/``free``
    measurement the start is generic and the fit says so in its warnings.  With ``fixed``
    unknowns, the candidates also include the optimum of the fit with them released, the fixed
    values put back as they are and with the handle side rescaled to keep its modes
@@ -43,14 +51,15 @@ with the handle free shows the mode and fixes it.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy import optimize
 
 from analysis.chain.device import Device
 from analysis.identify.degenerate import reinflate
-from analysis.identify.measurement import Measurement
+from analysis.identify.errors import MeasurementError
+from analysis.identify.measurement import MIN_POINTS, Measurement
 from analysis.identify.params import ChainParameters, parameter_keys, parse_key
 from analysis.identify.problem import FitProblem, solve
 from analysis.identify.results import ChainFit, OrderSelection
@@ -80,6 +89,11 @@ def _check(measurements: Sequence[Measurement], n_masses: int, ground: Sequence[
         positive = name in ("masses", "stiffnesses")
         if not (np.isfinite(v) and (v > 0 if positive else v >= 0)):
             raise ValidationError(key, "> 0 and finite" if positive else ">= 0 and finite", v)
+    for m in measurements:
+        b = m.bins
+        if b.used < MIN_POINTS:
+            raise MeasurementError(f"{b.used} of {b.total} bins carry information ({b.summary.split(': ', 1)[-1]}): "
+                                   f"at least {MIN_POINTS} are needed; excite the band to be fitted", file=m.source)
 
 
 def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_dampings: Sequence[int] | None = None,
@@ -140,6 +154,9 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
     ValidationError
         For no measurements, ``n_masses`` not an integer >= 1, a ground-damping index outside
         the chain, a fixed value out of range, or an unknown ``intervals`` mode.
+    MeasurementError
+        When a measurement has fewer than :data:`~analysis.identify.measurement.MIN_POINTS`
+        informative bins.
     ParameterKeyError
         When a key of ``fixed`` does not name a parameter of an ``n_masses`` chain.
     OperationCancelled
@@ -148,6 +165,8 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
     fixed = dict(fixed or {})
     ground = tuple(sorted(set((n_masses - 1,) if ground_dampings is None else (int(g) for g in ground_dampings))))
     _check(measurements, n_masses, ground, fixed)
+    originals = tuple(measurements)
+    measurements = tuple(m.informative_only() for m in originals)
     keys = parameter_keys(n_masses, ground)
     for key in fixed:
         if key not in keys:
@@ -162,7 +181,8 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
     if free and set(fixed) & set(parameter_keys(n_masses, ground)):
         released = _released_starts(problem, ground, fixed, rows.count, seed, hints, max_nfev)
         thetas = np.vstack([released, thetas])
-    sol, others = _multistart(problem, thetas, max_nfev) if free else (None, [])
+    stieltjes = thetas.shape[0] - rows.count  # the first data-derived row, after any released starts
+    sol, others, anchor = _multistart(problem, thetas, max_nfev, always=stieltjes) if free else (None, [], None)
     if sol is not None:
         sol = reinflate(problem, sol, max_nfev)
     T = sample_time if sample_time is not None else _common_sample_time(measurements)
@@ -172,20 +192,26 @@ def fit_chain(measurements: Sequence[Measurement], n_masses: int, ground_damping
     notes = () if any(m.quantity == "actuator" and m.boundary == "free" for m in measurements) else (
         "no actuator/free measurement: the start is generic (modes spread over the band), not read off the "
         "data; check the fit, or add the collocated actuator test with the handle free",)
-    return build_fit(problem, sol, keys, fixed, template, n_starts=thetas.shape[0], notes=notes,
-                     alternatives=[o.x for o in others], intervals=intervals)
+    fit = build_fit(problem, sol, keys, fixed, template, n_starts=thetas.shape[0], notes=notes,
+                    alternatives=[o.x for o in others], intervals=intervals, originals=originals)
+    return replace(fit, start_rss=float("nan") if anchor is None else 2.0 * float(anchor.cost))
 
 
-def _multistart(problem: FitProblem, thetas: np.ndarray,
-                max_nfev: int) -> tuple[optimize.OptimizeResult, list[optimize.OptimizeResult]]:
-    """Short runs from every start, full runs from the best :data:`_FULL_RUNS`; returns the
-    lowest-cost optimum and the other full-run optima (for
-    :func:`analysis.identify.uncertainty.widen_to_equivalent_optima`)."""
+def _multistart(problem: FitProblem, thetas: np.ndarray, max_nfev: int, always: int | None = None
+                ) -> tuple[optimize.OptimizeResult, list[optimize.OptimizeResult], optimize.OptimizeResult | None]:
+    """Short runs from every start, full runs from the best :data:`_FULL_RUNS` and from the start
+    ``always`` (the Stieltjes start, whatever its short run gave); returns the lowest-cost optimum,
+    the other full-run optima (for :func:`analysis.identify.uncertainty.widen_to_equivalent_optima`)
+    and the full run from ``always`` (``None`` without it)."""
     if thetas.shape[0] == 1:
-        return solve(problem, thetas[0], max_nfev), []
-    short = sorted((solve(problem, th, _SHORT_RUN) for th in thetas), key=lambda r: r.cost)
-    full = sorted((solve(problem, r.x, max_nfev) for r in short[:_FULL_RUNS]), key=lambda r: r.cost)
-    return full[0], full[1:]
+        only = solve(problem, thetas[0], max_nfev)
+        return only, [], only if always is not None else None
+    short = [solve(problem, th, _SHORT_RUN) for th in thetas]
+    order = sorted(range(len(short)), key=lambda i: short[i].cost)
+    chosen = order[:_FULL_RUNS] + ([always] if always is not None and always not in order[:_FULL_RUNS] else [])
+    runs = {i: solve(problem, short[i].x, max_nfev) for i in chosen}
+    full = sorted(runs.values(), key=lambda r: r.cost)
+    return full[0], full[1:], runs.get(always) if always is not None else None
 
 
 def _released_starts(problem: FitProblem, ground: tuple[int, ...], fixed: Mapping[str, float], count: int,
@@ -208,7 +234,7 @@ def _released_starts(problem: FitProblem, ground: tuple[int, ...], fixed: Mappin
     all_keys = parameter_keys(n, None)
     base = ChainParameters.from_rows(all_keys, _values(rows, all_keys)[:1], rows)
     released = problem.sub(tuple(own), base)
-    sol, _ = _multistart(released, np.log(np.maximum(_values(rows, own), 1e-300)), max_nfev)
+    sol, _, _ = _multistart(released, np.log(np.maximum(_values(rows, own), 1e-300)), max_nfev)
     chain = released.chains(sol.x)
     chain = ChainParameters(*(np.concatenate([a, a]) for a in
                               (chain.masses, chain.stiffnesses, chain.dampings, chain.ground_dampings)))
