@@ -15,19 +15,10 @@ from PySide6.QtWidgets import QGraphicsItem, QHBoxLayout, QLabel, QVBoxLayout, Q
 
 from analysis.study.quantities import format_number
 
-from app.widgets.colors import CURSOR_COLORS, WARNING_COLORS
+from app.widgets.colors import CURSOR_COLORS, PALETTE, WARNING_COLORS
 from app.views.legend_row import LegendRow
 
 __all__ = ["PlotView", "Series", "clean_xy", "fmt", "PALETTE", "mark_design_point", "rich_label"]
-
-PALETTE = {
-    "light": {"bg": "#ffffff", "fg": "#222222", "grid": 0.25, "a": "#1f5fbf", "b": "#d9480f", "c": "#2b8a3e",
-              "bad": (220, 40, 40, 45), "fill": (31, 95, 191, 45), "mark": "#c92a2a", "muted": "#868e96",
-              "a_pale": (31, 95, 191, 100), "b_pale": (217, 72, 15, 100), "c_pale": (43, 138, 62, 100)},
-    "dark": {"bg": "#1e1f22", "fg": "#dddddd", "grid": 0.3, "a": "#74a7ff", "b": "#ff922b", "c": "#69db7c",
-             "bad": (255, 80, 80, 60), "fill": (116, 167, 255, 55), "mark": "#ff6b6b", "muted": "#adb5bd",
-             "a_pale": (116, 167, 255, 110), "b_pale": (255, 146, 43, 110), "c_pale": (105, 219, 124, 110)},
-}
 
 
 @dataclass(frozen=True)

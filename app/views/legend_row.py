@@ -14,7 +14,20 @@ import pyqtgraph as pg
 from PySide6.QtCore import QObject, QTimer
 from PySide6.QtWidgets import QGraphicsItem
 
-__all__ = ["BelowLegend", "LegendRow", "swatch", "set_swatch_brush", "sync_legend"]
+__all__ = ["BelowLegend", "LegendRow", "HaloSample", "swatch", "set_swatch_brush", "sync_legend"]
+
+
+class HaloSample(pg.ItemSample):
+    """A legend sample that draws a line's ``shadowPen`` (its halo) under its pen, as the plot does:
+    pyqtgraph's sample draws the pen only, so the ρ = 1 contour's black line, which shows on the map
+    by its white halo, was black on the dark theme's background (1.27:1)."""
+
+    def paint(self, p: object, *args: object) -> None:
+        shadow = getattr(self.item, "opts", {}).get("shadowPen")
+        if shadow is not None and self.item.isVisible() and not isinstance(self.item, pg.ScatterPlotItem):
+            p.setPen(pg.mkPen(shadow))
+            p.drawLine(0, 11, 20, 11)
+        super().paint(p, *args)
 
 
 def swatch(brush: object, symbol: str = "s", size: float = 12) -> pg.PlotDataItem:
@@ -52,6 +65,7 @@ class BelowLegend(pg.LegendItem):
     """A legend laid out below a plot (no anchor); ``resized()`` is called when its size changes."""
 
     def __init__(self, resized: Callable[[], None], **kwargs: object) -> None:
+        kwargs.setdefault("sampleType", HaloSample)
         super().__init__(offset=None, **kwargs)
         self._resized = resized
 

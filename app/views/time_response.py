@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 import pyqtgraph as pg
-from PySide6.QtCore import Qt
+from PySide6.QtCore import QEvent, Qt
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
 from analysis.sampled import SimulationResult, Verdict
@@ -20,6 +20,7 @@ from analysis.study.quantities import format_number
 
 from app.views.base import PlotView, Series, clean_xy, plain
 from app.views.legend_row import sync_legend
+from app.widgets.colors import for_theme, is_dark
 
 __all__ = ["TimePlot", "TimeResponse", "verdict_text", "VERDICT_COLORS"]
 
@@ -142,7 +143,7 @@ class TimeResponse(QWidget):
         self.verdict.setWordWrap(True)
         self.kind: str | None = None
         self.result: SimulationResult | None = None
-        self._dark = False
+        self._dark = is_dark(self.palette())  # built in the dark theme, it gets no palette change
         self._note = ""
         plots = QHBoxLayout()
         plots.setContentsMargins(0, 0, 0, 0)
@@ -193,8 +194,18 @@ class TimeResponse(QWidget):
         if res is None:
             return
         muted = "#adb5bd" if self._dark else "#5c636a"  # 4.5:1 on either theme's window colour
-        self.verdict.setText(verdict_text(res.verdict, self._dark)
-                             + (f"<br><span style='color:{muted}'>{self._note}</span>" if self._note else ""))
+        self.verdict.setText(for_theme(verdict_text(res.verdict, self._dark)
+                                       + (f"<br><span style='color:{muted}'>{self._note}</span>" if self._note else ""),
+                                       self._dark))
+
+    def changeEvent(self, event: QEvent) -> None:  # noqa: N802 - Qt API
+        """The theme's palette reached the verdict: its colours follow (no tab passes the theme on:
+        the note under the verdict was written for the light theme, 2.1:1 on the dark one)."""
+        super().changeEvent(event)
+        if event.type() in (QEvent.Type.PaletteChange, QEvent.Type.ApplicationPaletteChange) \
+                and is_dark(self.palette()) != self._dark:
+            self._dark = is_dark(self.palette())
+            self._show_verdict()
 
     def apply_theme(self, dark: bool) -> None:
         self._dark = dark

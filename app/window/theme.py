@@ -1,19 +1,22 @@
 """The window's theme: light, dark or the system's, with the View → Theme menu.
 
 The palette is set on the application; plot views restyle themselves (``apply_theme(dark)``).
+The application's style is wrapped in :class:`ContrastStyle`, which outlines check-box and
+radio-button indicators readably (WCAG AA, 3:1) in either theme.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
-from PySide6.QtCore import QObject
-from PySide6.QtGui import QAction, QActionGroup, QColor, QPalette
-from PySide6.QtWidgets import QApplication, QMenu
+from PySide6.QtCore import QObject, QPointF, QRectF, Qt
+from PySide6.QtGui import QAction, QActionGroup, QColor, QPainter, QPalette, QPen
+from PySide6.QtWidgets import QApplication, QMenu, QProxyStyle, QStyle, QStyleOption, QWidget
 
 from app.core.settings import THEMES, Settings, resolve_dark
+from app.widgets.colors import INDICATOR_OUTLINE, is_dark
 
-__all__ = ["Theme", "dark_palette", "DARK_COLORS"]
+__all__ = ["Theme", "dark_palette", "DARK_COLORS", "ContrastStyle", "install_contrast_style"]
 
 #: The dark palette's colours by role.
 DARK_COLORS: dict[QPalette.ColorRole, str] = {
@@ -47,6 +50,40 @@ def dark_palette(dark: bool) -> QPalette:
     for role in (QPalette.ColorRole.Text, QPalette.ColorRole.ButtonText, QPalette.ColorRole.WindowText):
         p.setColor(QPalette.ColorGroup.Disabled, role, QColor(_DISABLED))
     return p
+
+
+_PE = QStyle.PrimitiveElement
+_CHECKS = (_PE.PE_IndicatorCheckBox, _PE.PE_IndicatorItemViewItemCheck)
+
+
+class ContrastStyle(QProxyStyle):
+    """The application's style, with check-box and radio-button indicators outlined in
+    :data:`~app.widgets.colors.INDICATOR_OUTLINE` (3:1 on the window and on a table cell) while
+    enabled; a disabled indicator keeps the style's faint outline."""
+
+    def drawPrimitive(self, element: QStyle.PrimitiveElement, option: QStyleOption,  # noqa: N802 - Qt API
+                      painter: QPainter, widget: QWidget | None = None) -> None:
+        super().drawPrimitive(element, option, painter, widget)
+        radio = element == _PE.PE_IndicatorRadioButton
+        if not (radio or element in _CHECKS) or not option.state & QStyle.StateFlag.State_Enabled:
+            return
+        painter.save()
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
+        painter.setPen(QPen(QColor(INDICATOR_OUTLINE[1 if is_dark(option.palette) else 0]), 1.0))
+        painter.setBrush(Qt.BrushStyle.NoBrush)
+        r = QRectF(option.rect)
+        if radio:  # Fusion's circle: centred on the rectangle, one pixel inside it
+            radius = (r.width() + (int(r.width()) + 1) % 2) / 2.0 - 1
+            painter.drawEllipse(r.center() + QPointF(0.5, 0.5), radius, radius)
+        else:  # Fusion's square: on the pixel centres of the rectangle's edges
+            painter.drawRect(r.adjusted(0.5, 0.5, -0.5, -0.5))
+        painter.restore()
+
+
+def install_contrast_style(app: QApplication) -> None:
+    """Wrap the application's style in :class:`ContrastStyle` (once)."""
+    if not isinstance(app.style(), ContrastStyle):
+        app.setStyle(ContrastStyle(app.style().name()))
 
 
 class Theme(QObject):
@@ -83,6 +120,7 @@ class Theme(QObject):
         dark = resolve_dark(self.settings.theme())
         app = QApplication.instance()
         if isinstance(app, QApplication):
+            install_contrast_style(app)
             app.setPalette(dark_palette(dark))
         for target in self._targets():
             target.apply_theme(dark)
