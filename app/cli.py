@@ -11,11 +11,12 @@ Usage::
     zwidth export-plot PROFILE --plot bound|reserve|range|chart|... -o FILE.png|svg|csv
     zwidth report PROFILE -o report.pdf|report.html [--page-size a4|letter]
     zwidth bench [--quick]
-    zwidth identify MEASUREMENT... --masses N [--fix KEY=VALUE]... -o profile.json [--json]
-                                  fit a chain to measurements (app/cli_identify.py; never imports Qt)
+    zwidth identify FILE[:QUANTITY[:BOUNDARY]]... --masses N [--sample-time T] -o PROFILE.json
+                                  fit a chain to measurements (app/cli_identify.py; never imports Qt;
+                                  more options: zwidth identify --help)
 
 Exit codes: 0 success, 1 bad profile (or the GUI cannot start), 2 usage error (among them an
-output file ``-o`` that is one of the command's input files).
+output file ``-o`` that is one of the command's input files), 130 ``identify`` cancelled by Ctrl-C.
 """
 
 from __future__ import annotations

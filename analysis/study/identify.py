@@ -33,7 +33,6 @@ from analysis.identify import (
     RobustStiffness,
     device_response,
     fit_chain,
-    load_measurement,
     make_measurement,
     open_intervals,
     robust_feasible_damping,
@@ -45,10 +44,12 @@ from analysis.profiles.schema import drop_per_mass
 from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.study.design_limits import BeyondLimit, design_beyond_limits
 from analysis.study.displays import display_kind
+from analysis.study.measurement_files import MeasurementSpec, read_measurement_files
 from analysis.study.quantities import format_number
 
 __all__ = ["BodeData", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "fit_notes", "identify_chain", "load_measurements", "parameter_rows",
-           "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements", "RobustRequest"]
+           "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements", "RobustRequest",
+           "MAX_MASSES", "FIT_SECONDS", "fit_time_estimate"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,22 +72,64 @@ class IdentifyResult:
     measurements: tuple[Measurement, ...]
 
 
-def load_measurements(paths: Sequence[str | os.PathLike], quantity: str = "actuator", boundary: str = "free",
-                      sample_time: float | None = None, delay_samples: int = 0) -> list[Measurement]:
+#: The largest ``--masses`` of ``zwidth identify``: the largest order whose fit takes under a minute
+#: of CPU time on the reference machine (issue 23; measured 2026-12-03, 2 shared cores, a random
+#: chain with actuator + gauge FRFs at 0.5 % noise, 400 points each): 6 masses took 17 s, 7 masses
+#: 69 s (and missed the truth: a local optimum).  ``--masses 600`` grew to 22 GB before this check.
+MAX_MASSES = 6
+#: CPU seconds of one fit by order on that case (800 complex points), for :func:`fit_time_estimate`
+FIT_SECONDS = {1: 0.05, 2: 0.05, 3: 0.2, 4: 0.5, 5: 0.8, 6: 17.0}
+_REFERENCE_POINTS = 800
+
+
+def fit_time_estimate(n_masses: int, points: int = _REFERENCE_POINTS, orders: bool = False) -> float:
+    """About how many CPU seconds a fit of ``n_masses`` takes (:data:`FIT_SECONDS`, in proportion to
+    the measured points; ``orders``: the order table's fits ``1..n_masses`` too).
+
+    Parameters
+    ----------
+    n_masses : int
+        Number of masses, ``1..MAX_MASSES``.
+    points : int, optional
+        Measured frequency points of all measurements together.
+    orders : bool, optional
+        Whether the orders ``1..n_masses`` are fitted too (their fits use Wald intervals only,
+        counted at the same cost: an upper estimate).
+
+    Returns
+    -------
+    float
+        Estimated CPU time [s] on the reference machine (a loaded machine takes longer; the
+        actuator FRF alone at realistic noise takes up to 70 times longer, issue 14).
+    """
+    n = min(max(int(n_masses), 1), MAX_MASSES)
+    seconds = sum(FIT_SECONDS[k] for k in range(1, n + 1)) if orders else FIT_SECONDS[n]
+    return seconds * max(int(points), 1) / _REFERENCE_POINTS
+
+
+def load_measurements(paths: Sequence[str | os.PathLike | MeasurementSpec], quantity: str = "actuator",
+                      boundary: str = "free", sample_time: float | None = None, delay_samples: int = 0, *,
+                      step_as_sample_time: bool = False) -> list[Measurement]:
     """:func:`analysis.identify.load_measurement` of each file (MeasurementError names file/row/column).
 
     Parameters
     ----------
-    paths : sequence of str or os.PathLike
-        The measurement files (frequency-response or time-series CSV files).
+    paths : sequence of str, os.PathLike or MeasurementSpec
+        The measurement files (frequency-response or time-series CSV files); a
+        :class:`~analysis.study.measurement_files.MeasurementSpec` carries its own quantity and
+        boundary (``zwidth identify g.csv:gauge``).
     quantity : str, optional
-        What was measured: ``"actuator"``, ``"handle"`` or ``"gauge"``.
+        What was measured: ``"actuator"``, ``"handle"`` or ``"gauge"`` (the default for files
+        that do not name their own).
     boundary : str, optional
-        How the handle was held, e.g. ``"free"``.
+        How the handle was held, ``"free"`` or ``"clamped"`` (the default likewise).
     sample_time : float or None, optional
         Controller sample period [s], or ``None`` for a continuous-time measurement.
     delay_samples : int, optional
         Computation delay in samples (sampled measurements only).
+    step_as_sample_time : bool, optional
+        With ``sample_time`` ``None``, a time series is sampled at its own time step (the command
+        line's default); ``False`` (the default here) reads it as continuous-time.
 
     Returns
     -------
@@ -98,8 +141,8 @@ def load_measurements(paths: Sequence[str | os.PathLike], quantity: str = "actua
     MeasurementError
         When a file cannot be read or its data are unusable (it names the file, row and column).
     """
-    return [load_measurement(p, quantity=quantity, boundary=boundary, sample_time=sample_time,
-                             delay_samples=delay_samples) for p in paths]
+    return [r.measurement for r in read_measurement_files(paths, quantity, boundary, sample_time, delay_samples,
+                                                          step_as_sample_time=step_as_sample_time)]
 
 
 def parse_fixed(items: Sequence[str]) -> dict[str, float]:
