@@ -22,7 +22,11 @@ for the real sampled loop:
   estimate and the damping it limits (the noise side of Chawda et al.'s trade-off);
 * :func:`passivity_comparison` -- a too-stiff wall with and without Hannaford & Ryu's passivity
   controller (``SimulationOptions.passivity_control``) and behind an eq. (9) coupling;
-* :func:`simulate` -- the nonlinear time-domain simulator with scenario presets.
+* :func:`simulate` -- the nonlinear time-domain simulator with scenario presets;
+* :func:`renderable_space` / :func:`m_width` -- the (M, B, K) space an impedance display renders
+  with chosen qualities (:data:`QUALITIES`: stable, passive, accurate, quiet) and the M-width
+  of Colonnese & Okamura; the rendered environment ``F = M a^ + B v^ + K x`` and its
+  acceleration estimate (:class:`AccelerationEstimate`) in :mod:`analysis.sampled.rendered`.
 
 The loop model is documented in :mod:`analysis.sampled.loop`, the controllers of the two
 displays in :mod:`analysis.sampled.controllers`, the terminations in
@@ -83,7 +87,24 @@ from analysis.sampled.terminations import (
 )
 
 __all__ = [
+    "ACCELERATION_KINDS",
     "ADMITTANCE_LOOP",
+    "AccelerationEstimate",
+    "EffectiveEnvironment",
+    "MWidth",
+    "QUALITIES",
+    "QualitySettings",
+    "RenderableSpace",
+    "RenderedEnvironment",
+    "RenderingController",
+    "effective_environment",
+    "m_width",
+    "renderable_space",
+    "rendered_force_response",
+    "renders_accurately",
+    "renders_passively",
+    "renders_quietly",
+    "renders_stably",
     "AdmittanceLoop",
     "CAUSALITIES",
     "CAUSALITY_KINDS",
@@ -193,6 +214,11 @@ _LAZY = {
     **dict.fromkeys(("CROSSING_RTOL", "MAP_PARAMETERS", "critical_mass", "critical_mass_chart", "critical_stiffness",
                      "critical_stiffness_chart", "radii", "stability_map", "stable_end", "worst_case"), ".sweeps"),
     **dict.fromkeys(("Simulator", "detect", "simulate"), ".simulator"),
+    **dict.fromkeys(("ACCELERATION_KINDS", "AccelerationEstimate", "RenderedEnvironment", "RenderingController",
+                     "rendered_force_response"), ".rendered"),
+    **dict.fromkeys(("EffectiveEnvironment", "MWidth", "QUALITIES", "QualitySettings", "RenderableSpace",
+                     "effective_environment", "m_width", "renderable_space", "renders_accurately",
+                     "renders_passively", "renders_quietly", "renders_stably"), ".renderable"),
 }
 
 

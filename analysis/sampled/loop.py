@@ -58,6 +58,7 @@ from analysis.checks import boolean, integer
 from analysis.errors import ValidationError
 from analysis.sampled.controllers import DisplayLoop, Engaged, StepResult, display_loop, linear_engaged
 from analysis.sampled.filtered import filtered_loop
+from analysis.sampled.rendered import AccelerationEstimate, check_virtual_mass, inertial_loop
 from analysis.sampled.terminations import (
     Environment,
     EnvironmentCausality,
@@ -141,11 +142,19 @@ class LoopSpec:
         integration); without it they are solved together.
     velocity_filter : VelocityFilter or None, optional
         Filter of the damping term's velocity estimate; ``None`` for the backward difference.
+    mass : float, optional
+        Virtual mass ``M`` [kg] of the impedance display's rendered environment
+        ``M a^ + b_c v^ + k_c delta`` (:mod:`analysis.sampled.rendered`), either sign; 0 by default.
+    acceleration : AccelerationEstimate or None, optional
+        The acceleration estimate of the mass term; ``None`` for the second backward difference.
+        With ``mass == 0`` and ``acceleration is None`` the loop has no mass term (today's loop,
+        unchanged); with an estimate it has one whose mass (``mv``) sweeps may override.
 
     Raises
     ------
     ValidationError
-        When a gain, the delay or the filter is out of range or of the wrong type.
+        When a gain, the delay, the filter, the mass or the estimate is out of range or of the
+        wrong type, or a mass term is asked of an admittance display.
     """
 
     display: str = "impedance"
@@ -154,6 +163,8 @@ class LoopSpec:
     delay_samples: int = 0
     implementation_delay: bool = False
     velocity_filter: VelocityFilter | None = None
+    mass: float = 0.0
+    acceleration: AccelerationEstimate | None = None
 
     def __post_init__(self) -> None:
         coupling, pd = display_loop(self.display).check_gains(self.coupling, self.pd)
@@ -164,12 +175,27 @@ class LoopSpec:
         vf = self.velocity_filter
         if vf is not None and not isinstance(vf, VelocityFilter):
             raise ValidationError("velocity_filter", "a VelocityFilter or None", vf)
+        object.__setattr__(self, "mass", check_virtual_mass("mass", self.mass))
+        acc = self.acceleration
+        if acc is not None and not isinstance(acc, AccelerationEstimate):
+            raise ValidationError("acceleration", "an AccelerationEstimate or None", acc)
+        if self.has_mass_term and self.display != "impedance":
+            raise ValidationError("mass", "0 without an acceleration estimate for an admittance display", self.mass)
+
+    @property
+    def has_mass_term(self) -> bool:
+        """Whether the loop renders a mass term (a nonzero mass or an acceleration estimate)."""
+        return self.mass != 0.0 or self.acceleration is not None
 
     @property
     def loop(self) -> DisplayLoop:
         """The display's loop object (:mod:`analysis.sampled.controllers`), with the velocity
-        filter of :mod:`analysis.sampled.filtered` when one is set (not the backward difference)."""
-        return filtered_loop(self.display, self.velocity_filter)
+        filter of :mod:`analysis.sampled.filtered` when one is set (not the backward difference),
+        and the mass term of :mod:`analysis.sampled.rendered` when there is one."""
+        base = filtered_loop(self.display, self.velocity_filter)
+        if not self.has_mass_term:
+            return base
+        return inertial_loop(base, self.acceleration, self.mass, self.velocity_filter)
 
 
 # -- plant ----------------------------------------------------------------------------------
@@ -293,7 +319,7 @@ def override_params(p: SimpleNamespace, overrides: dict[str, np.ndarray], count:
     """Replace controller constants of ``p`` by columns of ``count`` values (one per termination)."""
     for key, val in overrides.items():
         if not hasattr(p, key) or key in ("T", "lag", "xw", "wall"):
-            raise ValidationError("overrides", "kc, bc, mc, kp, kd, kobj, bobj or me", key)
+            raise ValidationError("overrides", "kc, bc, mc, kp, kd, kobj, bobj, me or mv (with a mass term)", key)
         arr = np.asarray(val, dtype=float).reshape(-1)
         if arr.size != count:
             raise ValidationError(key, f"{count} values (one per termination)", arr.size)

@@ -44,6 +44,7 @@ import numpy as np
 from scipy import optimize
 
 from analysis.chain.velocity_filter import VelocityFilter
+from analysis.sampled.rendered import AccelerationEstimate
 from analysis.checks import Real, integer
 from analysis.errors import ValidationError
 
@@ -51,6 +52,7 @@ __all__ = [
     "required_damping",
     "passivity_limit",
     "passivity_limits",
+    "mass_passivity_term",
     "passivity_closed_form",
     "linear_stability_limit",
     "rigid_stability_polynomial",
@@ -230,15 +232,60 @@ def passivity_limit(mass: float, damping: float, sample_time: float, virtual_dam
     return kmax if kmax >= 0 else math.nan
 
 
+def mass_passivity_term(theta: np.ndarray, sample_time: float, delay_samples: int = 0,
+                        acceleration: AccelerationEstimate | None = None,
+                        velocity_filter: VelocityFilter | None = None) -> np.ndarray:
+    """The virtual mass's share of the Colgate-Schenkel criterion, per kg: ``c_M(theta)/M``.
+
+    With the acceleration estimate ``A(z) = H_a(z) (1 - z^{-1})^2/T^2``
+    (:class:`~analysis.sampled.rendered.AccelerationEstimate`) in the controller ``z^{-d} M A``,
+    the right-hand side ``(T/2) Re{(1 - e^{-j theta}) z^{-d} M A}/(1 - cos theta)`` is, from
+    ``(1 - e^{-j theta}) = 2j sin(theta/2) e^{-j theta/2}`` and ``1 - cos theta = 2 sin^2(theta/2)``::
+
+        c_M(theta) = -(2 M/T) sin(theta/2) Re{j e^{-j (d + 3/2) theta} H_a(e^{j theta})},
+
+    which is ``-(2 M/T) sin(theta/2) sin((d + 3/2) theta)`` for the second backward difference
+    (no 0/0 at DC).  The criterion with the whole rendered environment is
+    ``b >= K a(theta) - B r(theta) + M c_M(theta)/M`` (:func:`passivity_limits`).
+
+    Parameters
+    ----------
+    theta : numpy.ndarray
+        Normalized frequencies ``w T`` in ``(0, pi]``, any shape.
+    sample_time : float
+        Sample period ``T`` [s].
+    delay_samples : int, optional
+        Computation delay ``d`` in samples, at least 0.
+    acceleration : AccelerationEstimate or None, optional
+        The acceleration estimate; ``None`` for the second backward difference.
+    velocity_filter : VelocityFilter or None, optional
+        The velocity filter ``H_f`` (its share of ``H_a`` for ``"filtered_velocity"``).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``c_M/M`` [N s/m per kg], the shape of ``theta``.
+    """
+    T = float(sample_time)
+    th = np.asarray(theta, dtype=float)
+    acc = AccelerationEstimate() if acceleration is None else acceleration
+    h = acc.filter_response(th / T, T, velocity_filter)
+    return -(2.0 / T) * np.sin(0.5 * th) * np.real(1j * np.exp(-1j * (delay_samples + 1.5) * th) * h)
+
+
 def passivity_limits(mass: float, damping: float, sample_time: float, virtual_dampings: np.ndarray,
                      delay_samples: int = 0, points: int = 4001, *,
-                     velocity_filter: VelocityFilter | None = None) -> np.ndarray:
+                     velocity_filter: VelocityFilter | None = None, virtual_masses: np.ndarray | None = None,
+                     acceleration: AccelerationEstimate | None = None, fine_points: int | None = None) -> np.ndarray:
     """:func:`passivity_limit` for many virtual dampings B at once (the Z-width region's passive edge).
 
     Numerical kernel: ``K_max(B) = min over a(theta) > 0 of (b + B r(theta))/a(theta)`` with
     ``r = Re{e^{-j(d+1) theta} H_f}`` on one grid of ``points`` for every B, then a second grid of
     ``points`` between the neighbours of each minimum (error ~ (grid step / points)^2); NaN
     where some ``a <= 0`` has ``c > b`` or the limit is negative, as :func:`passivity_limit`.
+    With ``virtual_masses`` (one M per B, kg) the rendered environment's mass term
+    ``M c_M(theta)/M`` (:func:`mass_passivity_term`, estimate ``acceleration``) is added to ``c``:
+    the Colgate-Schenkel test of ``F = M a^ + B v^ + K x``.
 
     Parameters
     ----------
@@ -256,6 +303,12 @@ def passivity_limits(mass: float, damping: float, sample_time: float, virtual_da
         Points of each of the two grids.
     velocity_filter : VelocityFilter or None, optional
         Filter ``H_f`` of the velocity estimate; ``None`` for the backward difference.
+    virtual_masses : numpy.ndarray or None, optional
+        Virtual masses ``M`` [kg], one per B (flattened, broadcast); ``None`` for no mass term.
+    acceleration : AccelerationEstimate or None, optional
+        The mass term's acceleration estimate; ``None`` for the second backward difference.
+    fine_points : int or None, optional
+        Points of the second grid; ``None`` for ``points``.
 
     Returns
     -------
@@ -273,12 +326,15 @@ def passivity_limits(mass: float, damping: float, sample_time: float, virtual_da
     d = integer("delay_samples", delay_samples, 0)
     B = np.asarray(virtual_dampings, float).reshape(-1, 1)
     vf = velocity_filter
+    Mv = None if virtual_masses is None else np.broadcast_to(np.asarray(virtual_masses, float).reshape(-1, 1), B.shape)
 
     def ratio(th: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         a = 0.5 * T * np.sin((d + 0.5) * th) / np.sin(0.5 * th)
         e = np.exp(-1j * (d + 1) * th)
         r = np.real(e if vf is None or vf.is_backward else e * vf.filter_response(th / T, T))
         c = -B * r
+        if Mv is not None:
+            c = c + Mv * mass_passivity_term(th, T, d, acceleration, vf)
         with np.errstate(divide="ignore", invalid="ignore"):
             q = np.where(a > 0, (b - c) / np.where(a > 0, a, 1.0), np.inf)
         return q, (a <= 0) & (c > b)
@@ -287,7 +343,8 @@ def passivity_limits(mass: float, damping: float, sample_time: float, virtual_da
     q, bad = ratio(th)
     i = np.argmin(q, axis=1)
     lo, hi = th[np.maximum(i - 1, 0)], th[np.minimum(i + 1, th.size - 1)]
-    fine = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, points)[None, :]
+    fine = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, points if fine_points is None else
+                                                          integer("fine_points", fine_points, 2))[None, :]
     qf = ratio(fine)[0]  # row i of the fine grid belongs to B[i]: elementwise broadcast
     kmax = np.minimum(q.min(axis=1), qf.min(axis=1))
     return np.where(bad.any(axis=1) | (kmax < 0), np.nan, kmax)

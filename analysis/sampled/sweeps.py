@@ -67,6 +67,7 @@ __all__ = [
     "MAP_PARAMETERS",
     "CROSSING_RTOL",
     "stable_end",
+    "first_crossing",
 ]
 
 _PER_DECADE = 24
@@ -235,6 +236,10 @@ def _first_crossing(f, lo: float, hi: float, increasing: bool) -> float:
     g_safe = float(rho[j - start - 1]) - top if j > start else None
     return stable_end(lambda x: float(f(np.array([x]))[0]) - top, float(grid[j - 1]), float(grid[j]),
                       g_safe=g_safe, g_unsafe=float(rho[j - start]) - top)
+
+
+#: The first crossing of a batched spectral radius from the safe end (public name of the scan above).
+first_crossing = _first_crossing
 
 
 def _radius_of(device: Device, spec: LoopSpec, term: Termination, gain: str) -> Callable[[np.ndarray], np.ndarray]:

@@ -50,7 +50,7 @@ from analysis.chain.limits import SAMPLE_TIME, Limit
 from analysis.chain.velocity_filter import BACKWARD, VelocityFilter
 from analysis.errors import ValidationError
 
-__all__ = ["VelocityNoise", "noise_gain", "estimate_noise", "noise_limited_damping", "DEFAULT_FORCE_NOISE",
+__all__ = ["VelocityNoise", "noise_gain", "transfer_noise_gain", "estimate_noise", "noise_limited_damping", "DEFAULT_FORCE_NOISE",
            "ENCODER_RESOLUTION", "FORCE_NOISE"]
 
 #: Encoder resolution at the handle (m): 1 nm (interferometric scales) to 1 cm.
@@ -152,6 +152,43 @@ def noise_gain(velocity_filter: VelocityFilter | None, sample_time: float) -> fl
     A, B, C, D = _estimate_state_space(vf, T)
     P = linalg.solve_discrete_lyapunov(A, np.outer(B, B), method="bilinear")
     return math.sqrt(max(float(C @ P @ C) + D * D, 0.0))
+
+
+def transfer_noise_gain(num: np.ndarray, den: np.ndarray) -> float:
+    """The noise gain ``sqrt(sum_k h[k]^2)`` of ``num(z^{-1})/den(z^{-1})`` (``den[0] != 0``), exactly.
+
+    The same route as :func:`noise_gain`: the controllable canonical realization (both
+    polynomials padded to one length) and the discrete Lyapunov equation by its bilinear
+    transformation.  Used for the rendered environment's force noise ``B V + M A``
+    (:mod:`analysis.sampled.renderable`).
+
+    Parameters
+    ----------
+    num : numpy.ndarray
+        Numerator coefficients in powers of ``z^{-1}``.
+    den : numpy.ndarray
+        Denominator coefficients in powers of ``z^{-1}``, every root of ``den(z^{-1})`` inside
+        the unit circle (a stable filter).
+
+    Returns
+    -------
+    float
+        The noise gain (the unit of ``num/den``).
+    """
+    num, den = np.asarray(num, float), np.asarray(den, float)
+    n = max(num.size, den.size) - 1
+    b = np.r_[num, np.zeros(n + 1 - num.size)] / den[0]
+    a = np.r_[den, np.zeros(n + 1 - den.size)] / den[0]
+    if n == 0:
+        return abs(float(b[0]))
+    A = np.zeros((n, n))
+    A[0, :] = -a[1:]
+    A[1:, :-1] = np.eye(n - 1)
+    B = np.zeros(n)
+    B[0] = 1.0
+    C = b[1:] - b[0] * a[1:]
+    P = linalg.solve_discrete_lyapunov(A, np.outer(B, B), method="bilinear")
+    return math.sqrt(max(float(C @ P @ C) + float(b[0]) ** 2, 0.0))
 
 
 def estimate_noise(velocity_filter: VelocityFilter | None, sample_time: float,

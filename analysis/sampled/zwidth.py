@@ -62,6 +62,7 @@ from analysis.checks import Real, integer
 from analysis.errors import ValidationError
 from analysis.sampled.loop import STABILITY_TOLERANCE, LoopSpec, closed_loop_matrices, discrete_plants, spectral_radius
 from analysis.sampled.passivity import passivity_limits
+from analysis.sampled.rendered import AccelerationEstimate
 from analysis.sampled.terminations import HANDS_OFF, Termination, god_object_wall
 from analysis.sampled.velocity_noise import DEFAULT_FORCE_NOISE, noise_limited_damping
 
@@ -181,28 +182,33 @@ def check_b_values(b: object) -> np.ndarray:
 def stiffness_limits(device: Device, b: np.ndarray, delay_samples: int = 0,
                      velocity_filter: VelocityFilter | None = None, *, termination: Termination | None = None,
                      implementation_delay: bool = False, k_range: tuple[float, float] = (1.0, 1e9),
-                     per_decade: int = 24, rtol: float = 1e-10) -> np.ndarray:
+                     per_decade: int = 24, rtol: float = 1e-10, mass: np.ndarray | None = None,
+                     acceleration: AccelerationEstimate | None = None) -> np.ndarray:
     """Largest stable wall stiffness K for each damping ``b`` (first crossing; module docstring).
 
     Numerical kernel: the scan and the bisection are batched over every B at once (one plant
     discretization, one stacked eigenvalue problem per step), which is what makes 100 values of
     B for the HBFD take a fraction of a second; it is kept in one piece for that reason.
     ``rtol`` is the relative width of the final bracket (the stable end is returned).
+    ``mass`` (one virtual mass per B, kg) adds the rendered environment's mass term with the
+    estimate ``acceleration`` (:mod:`analysis.sampled.rendered`); ``None``: no mass term.
     """
     b = np.asarray(b, float).reshape(-1)
     lo, hi = float(k_range[0]), float(k_range[1])
     if not (0 < lo < hi and math.isfinite(hi)):
         raise ValidationError("k_range", "0 < low < high, finite (N/m)", k_range)
     term = Termination(HANDS_OFF, god_object_wall()) if termination is None else termination
+    masses = None if mass is None else np.broadcast_to(np.asarray(mass, float).reshape(-1), b.shape)
     spec = LoopSpec("impedance", (1.0, 1.0), delay_samples=integer("delay_samples", delay_samples, 0, 1000),
-                    implementation_delay=implementation_delay, velocity_filter=velocity_filter)
+                    implementation_delay=implementation_delay, velocity_filter=velocity_filter,
+                    acceleration=None if masses is None else (acceleration or AccelerationEstimate()))
     if velocity_filter is not None:
         velocity_filter.check(device.sample_time)
     plants = discrete_plants(device, (term.grasp,))
 
-    def radius(bs: np.ndarray, ks: np.ndarray) -> np.ndarray:
-        Phi = closed_loop_matrices(device, spec, [term] * bs.size, plants, np.zeros(bs.size, dtype=int),
-                                   {"kc": ks, "bc": bs})
+    def radius(idx: np.ndarray, ks: np.ndarray) -> np.ndarray:
+        ov = {"kc": ks, "bc": b[idx]} if masses is None else {"kc": ks, "bc": b[idx], "mv": masses[idx]}
+        Phi = closed_loop_matrices(device, spec, [term] * idx.size, plants, np.zeros(idx.size, dtype=int), ov)
         # a state whose row is zero in every matrix (the god-object's held x_e, v_e) only adds an
         # eigenvalue 0: expanding det(zI - Phi) along that row leaves z det(minor)
         keep = np.flatnonzero(np.any(Phi != 0.0, axis=(0, 2)))
@@ -212,7 +218,7 @@ def stiffness_limits(device: Device, b: np.ndarray, delay_samples: int = 0,
         """Per row of ``b[rows]``: index of the first unstable K of ``grid``, whether any is, radii."""
         n = grid.shape[-1]
         g = np.broadcast_to(grid, (rows.size, n))
-        rho = radius(np.repeat(b[rows], n), g.reshape(-1)).reshape(rows.size, n)
+        rho = radius(np.repeat(rows, n), g.reshape(-1)).reshape(rows.size, n)
         bad = rho > _UNSTABLE
         return np.argmax(bad, axis=1), bad.any(axis=1), rho
 
@@ -242,7 +248,7 @@ def stiffness_limits(device: Device, b: np.ndarray, delay_samples: int = 0,
         rvals = np.concatenate([rho[todo, f - 1][:, None], rfine, rho[todo, f][:, None]], axis=1)
         safe = np.log(fine[rows, j - 1]), rvals[rows, j - 1] - _UNSTABLE
         unsafe = np.log(fine[rows, j]), rvals[rows, j] - _UNSTABLE
-        out[todo] = np.exp(_bracket(lambda x: radius(b[todo], np.exp(x)) - _UNSTABLE, safe, unsafe, rtol))
+        out[todo] = np.exp(_bracket(lambda x: radius(todo, np.exp(x)) - _UNSTABLE, safe, unsafe, rtol))
     return out
 
 
