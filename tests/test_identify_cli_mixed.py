@@ -1,6 +1,9 @@
 """``zwidth identify`` with real measurement sets (issue 23): each file its own kind
 (``FILE[:QUANTITY[:BOUNDARY]]``), time series sampled at their own step, ``--masses`` checked
-before anything is read, progress above 4 masses and Ctrl-C as a clean cancel."""
+before anything is read, progress above 4 masses and Ctrl-C as a clean cancel.
+
+The fits are in process (:func:`cli_runner.run_cli`); only the Ctrl-C test starts a real process,
+since a signal needs one."""
 
 from __future__ import annotations
 
@@ -21,8 +24,6 @@ from analysis.profiles import load_profile
 from analysis.study.identify import MAX_MASSES
 from analysis.study.measurement_files import MeasurementSpec, parse_measurement_spec
 from cli_runner import ROOT, environment, run_cli
-
-pytestmark = pytest.mark.numerics
 
 T = 1e-3
 #: the issue's 3-mass device: handle 0.12 kg, 0.45, 0.30; k 6e4 and 1.5e5 N/m; 3 N s/m to ground
@@ -72,6 +73,7 @@ def identify_json(capsys, *argv) -> tuple[dict, str]:
     return json.loads(r.stdout), r.stderr
 
 
+@pytest.mark.numerics  # fits: run under the second OpenBLAS kernel too
 def test_mixed_actuator_gauge_clamped_set_recovers_the_device(files, tmp_path, capsys):
     out = tmp_path / "mixed.json"
     data, _ = identify_json(capsys, files["a"], f"{files['g']}:gauge", f"{files['c']}:actuator:clamped",
@@ -88,6 +90,7 @@ def test_mixed_actuator_gauge_clamped_set_recovers_the_device(files, tmp_path, c
     assert not any("clamped-handle" in s for s in [*data["suggestions"].values(), *data["warnings"]])
 
 
+@pytest.mark.numerics  # fits: run under the second OpenBLAS kernel too
 def test_gauge_file_is_fitted_as_gauge_only_when_it_says_so(files, tmp_path, capsys):
     right, _ = identify_json(capsys, files["a"], f"{files['g']}:gauge", "--masses", "3", "--sample-time", "0.001",
                              "-o", tmp_path / "right.json")
@@ -99,6 +102,7 @@ def test_gauge_file_is_fitted_as_gauge_only_when_it_says_so(files, tmp_path, cap
     np.testing.assert_allclose(load_profile(tmp_path / "right.json").device.masses, DEVICE.masses, rtol=1e-5)
 
 
+@pytest.mark.numerics  # fits: run under the second OpenBLAS kernel too
 def test_time_series_uses_its_own_step_without_sample_time(files, tmp_path, capsys):
     out = tmp_path / "ts.json"
     sampled, err = identify_json(capsys, files["ts"], "--masses", "3", "-o", out)
@@ -171,6 +175,7 @@ def five_masses() -> Device:
                   sample_time=T)
 
 
+@pytest.mark.numerics  # fits: run under the second OpenBLAS kernel too
 def test_more_than_four_masses_prints_estimate_and_progress(tmp_path, capsys):
     dev = five_masses()
     a = write_frf(tmp_path / "a5.csv", device=dev, points=200)
