@@ -46,7 +46,9 @@ def add_identify_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("identify", help="fit a chain model to measured frequency responses and write a profile",
                        description="Fit an N-mass chain to FRF or time-series CSV files (all together) and write "
                        "a profile with the fitted device and an identification section (95 % intervals, "
-                       "embedded measurements).")
+                       "embedded measurements).  Each FILE may name what it measured, FILE:QUANTITY[:BOUNDARY] "
+                       "(g.csv:gauge, c.csv:actuator:clamped).  A time series without --sample-time is sampled "
+                       "at its own time step.  Ctrl-C cancels (exit 130, nothing written).")
     p.add_argument("measurements", metavar="FILE[:QUANTITY[:BOUNDARY]]", nargs="+",
                    help="FRF or time-series CSV file, optionally with its own kind, e.g. g.csv:gauge or "
                    "c.csv:actuator:clamped (default: --quantity, --boundary)")
