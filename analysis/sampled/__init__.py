@@ -216,9 +216,9 @@ _LAZY = {
     **dict.fromkeys(("Simulator", "detect", "simulate"), ".simulator"),
     **dict.fromkeys(("ACCELERATION_KINDS", "AccelerationEstimate", "RenderedEnvironment", "RenderingController",
                      "rendered_force_response"), ".rendered"),
-    **dict.fromkeys(("EffectiveEnvironment", "MWidth", "QUALITIES", "QualitySettings", "RenderableSpace",
-                     "effective_environment", "m_width", "renderable_space", "renders_accurately",
-                     "renders_passively", "renders_quietly", "renders_stably"), ".renderable"),
+    **dict.fromkeys(("EffectiveEnvironment", "QUALITIES", "QualitySettings", "effective_environment",
+                     "renders_accurately", "renders_passively", "renders_quietly", "renders_stably"), ".qualities"),
+    **dict.fromkeys(("MWidth", "RenderableSpace", "m_width", "renderable_space"), ".renderable"),
 }
 
 
