@@ -1,0 +1,266 @@
+"""The renderable (M, B, K) space and its qualities (issue 24), against independent routes."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from scipy import optimize
+
+from analysis import Device
+from analysis.errors import ValidationError
+from analysis.progress import OperationCancelled
+from analysis.sampled import (
+    AccelerationEstimate,
+    Grasp,
+    QualitySettings,
+    RenderedEnvironment,
+    RenderingController,
+    VelocityFilter,
+    effective_environment,
+    passivity_limits,
+    renderable_space,
+    renders_passively,
+    renders_quietly,
+    renders_stably,
+    zwidth_region,
+)
+from analysis.sampled.loop import _cached_zoh_plants
+from test_m_width import hand_radius
+
+T = 1e-3
+PROPS = settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+
+
+def rigid(m: float = 0.5, b: float = 2.0) -> Device:
+    return Device(masses=[m], stiffnesses=[], dampings=[], ground_dampings=[b], sensor_element=0, sample_time=T)
+
+
+@pytest.mark.parametrize("vf", [None, VelocityFilter("lowpass1", cutoff=2 * math.pi * 40)])
+@pytest.mark.parametrize("which", ["rigid", "hbfd"])
+def test_zero_mass_is_the_zwidth_region_bit_for_bit(which, vf, hbfd):
+    dev = rigid() if which == "rigid" else hbfd
+    b = np.geomspace(0.1, 100.0, 9)
+    s = renderable_space(dev, mass=[-0.05, 0.0, 0.05], damping=b, delay_samples=1, velocity_filter=vf)
+    region = zwidth_region(dev, b=b, delay_samples=1, velocity_filter=vf, passive=False)
+    assert np.array_equal(s.by_quality["stable"][1], region.k_max)
+    assert np.array_equal(s.k_max, s.by_quality["stable"])
+
+
+@pytest.mark.parametrize(("M", "B", "d"), [(0.2, 3.0, 1), (-0.2, 1.0, 1), (0.4, 10.0, 0), (-0.1, -1.0, 2)])
+def test_k_max_is_the_first_root_crossing_of_the_hand_polynomial(M, B, d):
+    m, b = 0.5, 2.0
+    s = renderable_space(rigid(m, b), mass=[M], damping=[B], delay_samples=d)
+    k = float(s.k_max[0, 0])
+
+    def g(K: float) -> float:
+        return hand_radius(m, b, M, B, K, d) - 1.0
+
+    grid = np.geomspace(1.0, 1e9, 2000)
+    vals = np.array([g(K) for K in grid])
+    if vals[0] > 0:
+        assert k == 0.0
+        return
+    j = int(np.argmax(vals > 0))
+    assert j > 0
+    assert k == pytest.approx(optimize.brentq(g, grid[j - 1], grid[j], xtol=1e-12, rtol=1e-14), rel=1e-8)
+
+
+def test_the_space_agrees_with_the_stability_predicate_on_either_side(hbfd):
+    ctrl = RenderingController(delay_samples=1)
+    s = renderable_space(hbfd, mass=[-0.3, 0.1, 0.4], damping=[0.5, 20.0], delay_samples=1)
+    checked = 0
+    for i, M in enumerate(s.mass):
+        for j, B in enumerate(s.damping):
+            k = float(s.k_max[i, j])
+            if not 1.0 < k < 1e9:
+                continue
+            checked += 1
+            for frac in (0.1, 0.5, 0.999):
+                assert renders_stably(hbfd, ctrl, M, B, frac * k)
+            assert not renders_stably(hbfd, ctrl, M, B, 1.001 * k)
+    assert checked >= 4
+
+
+def test_grasps_intersect_the_stable_space(hbfd):
+    grasp = Grasp(mass=0.3, damping=5.0, stiffness=200.0)
+    M, B = [-0.2, 0.2], [1.0, 30.0]
+    alone = renderable_space(hbfd, M, B, 1, settings=QualitySettings(grasps=(grasp,))).k_max
+    off = renderable_space(hbfd, M, B, 1).k_max
+    both = renderable_space(hbfd, M, B, 1, settings=QualitySettings(grasps=(Grasp(), grasp))).k_max
+    assert np.array_equal(both, np.minimum(alone, off))
+
+
+def test_the_plant_is_discretized_once_per_grasp(hbfd):
+    """The trace never recomputes the matrix exponential per point (discrete_plants' cache)."""
+    before = _cached_zoh_plants.cache_info().misses
+    renderable_space(hbfd, np.linspace(-0.2, 0.2, 5), np.linspace(-1.0, 20.0, 6), 1)
+    assert _cached_zoh_plants.cache_info().misses - before <= 1
+
+
+def test_zero_mass_passivity_is_colgate_schenkel():
+    b = np.array([0.0, 0.5, 1.0, 1.5])
+    s = renderable_space(rigid(), mass=[0.0], damping=b, delay_samples=1, qualities=("passive",))
+    ref = passivity_limits(0.5, 2.0, T, b, 1)
+    # the space's grid is 2001 points refined on 65 (the Z-width region's 4001 on 4001): the minimum
+    # over theta agrees to the grids' quadratic error
+    assert s.k_max[0] == pytest.approx(np.where(np.isnan(ref), 0.0, ref), rel=1e-7)
+    ctrl = RenderingController(1)
+    k = float(s.k_max[0, 1])
+    assert renders_passively(rigid(), ctrl, 0.0, 0.5, 0.999 * k)
+    assert not renders_passively(rigid(), ctrl, 0.0, 0.5, 1.001 * k)
+
+
+def test_a_virtual_mass_costs_passivity():
+    """b >= M c_M(theta): a positive mass needs damping at Nyquist (c_M(pi) = 2M/T for d = 0)."""
+    s = renderable_space(rigid(), mass=[0.0, 2e-4, 5e-4], damping=[0.0], delay_samples=0, qualities=("passive",))
+    k = s.k_max[:, 0]
+    # d = 0, B = 0: K a(pi) + c_M(pi) <= b with a(pi) = T/2 binds at Nyquist: K = (b - 2M/T)/(T/2)
+    assert k[1] == pytest.approx((2.0 - 2 * 2e-4 / T) / (T / 2), rel=1e-9)
+    assert k[2] == pytest.approx((2.0 - 2 * 5e-4 / T) / (T / 2), rel=1e-9)
+
+
+@pytest.mark.parametrize("d", [0, 2])
+def test_effective_stiffness_and_damping_of_a_sampled_spring(d):
+    """Colonnese et al. 2015: a ZOH spring feels like K_eff = K cos((d+1/2) wT) sinc and a negative
+    damping B_eff = -K sin((d+1/2) wT) sin(wT/2)/(w wT/2), -> -K T (d + 1/2) at low frequency."""
+    K = 3000.0
+    s = QualitySettings(band=(1.0, 600.0), band_points=40)
+    eff = effective_environment(rigid(), RenderedEnvironment(stiffness=K), RenderingController(d), s)
+    w, h = eff.w, 0.5 * eff.w * T
+    assert eff.stiffness == pytest.approx(K * np.cos((d + 0.5) * w * T) * np.sin(h) / h, rel=1e-12)
+    assert eff.damping == pytest.approx(-K * np.sin((d + 0.5) * w * T) * np.sin(h) / (w * h), rel=1e-10)
+    assert eff.damping[0] == pytest.approx(-K * T * (d + 0.5), rel=1e-5)
+    if d == 0:
+        assert eff.stiffness == pytest.approx(K * np.sin(w * T) / (w * T), rel=1e-12)
+        assert eff.damping == pytest.approx(-K * (1 - np.cos(w * T)) / (w * w * T), rel=1e-9)
+
+
+def test_the_fitted_environment_recovers_what_is_rendered_at_low_frequency():
+    env = RenderedEnvironment(mass=0.2, damping=4.0, stiffness=800.0)
+    eff = effective_environment(rigid(), env, RenderingController(0), QualitySettings(band=(1.0, 20.0)))
+    # the hold and the differences lag: the damper's j w B e^{-j w T} adds B T w^2 to Re G, so the
+    # user feels M - B T; the spring's e^{-j w T/2} takes K T/2 off the damping
+    assert eff.fitted_mass == pytest.approx(0.2 - 4.0 * T, rel=1e-3)
+    assert eff.fitted_stiffness == pytest.approx(800.0, rel=1e-3)
+    assert eff.fitted_damping == pytest.approx(4.0 - 800.0 * T / 2, rel=2e-2)
+    assert np.all(eff.error < 0.05)
+
+
+def test_quiet_is_the_velocity_noise_criterion_at_zero_mass():
+    q, F = 1e-5, 0.1
+    s = QualitySettings(encoder_resolution=q, force_noise=F)
+    b_noise = F / (q * math.sqrt(2.0) / T / math.sqrt(12.0))  # sigma_v of the backward difference
+    ctrl = RenderingController(1)
+    assert renders_quietly(rigid(), ctrl, 0.0, 0.999 * b_noise, s)
+    assert not renders_quietly(rigid(), ctrl, 0.0, 1.001 * b_noise, s)
+    assert not renders_quietly(rigid(), ctrl, 0.0, -1.001 * b_noise, s)
+    # B V + M A: for the second difference sum h_V h_A = (1*1 + (-1)(-2))/T^3 = 3/T^3
+    M, B = 1e-3, 2.0
+    sigma = q / math.sqrt(12) * math.sqrt(B * B * 2 / T ** 2 + 2 * B * M * 3 / T ** 3 + M * M * 6 / T ** 4)
+    assert renders_quietly(rigid(), ctrl, M, B, QualitySettings(encoder_resolution=q, force_noise=sigma * 1.001))
+    assert not renders_quietly(rigid(), ctrl, M, B, QualitySettings(encoder_resolution=q, force_noise=sigma * 0.999))
+
+
+def test_the_space_of_every_quality_is_the_smallest_and_progress_reaches_the_end(hbfd):
+    calls: list[tuple[int, int]] = []
+    s = renderable_space(hbfd, np.linspace(-0.05, 0.05, 5), np.linspace(-2.0, 10.0, 4), 1,
+                         qualities=("stable", "passive", "accurate", "quiet"),
+                         settings=QualitySettings(encoder_resolution=1e-6, force_noise=1.0),
+                         progress=lambda d, t: calls.append((d, t)))
+    stacked = np.stack([s.by_quality[q] for q in s.qualities])
+    assert np.array_equal(s.k_max, stacked.min(axis=0))
+    assert np.all(s.by_quality["accurate"] <= s.by_quality["stable"])
+    assert calls[-1][0] == calls[-1][1] and [d for d, _ in calls] == sorted(d for d, _ in calls)
+    assert s.k_max.shape == (5, 4) and not s.k_max.flags.writeable
+
+
+def test_cancel_stops_the_space(hbfd):
+    with pytest.raises(OperationCancelled):
+        renderable_space(hbfd, [0.0, 0.1], [1.0, 2.0], 1, cancelled=lambda: True)
+
+
+def test_volume_is_the_trapezoid_on_signed_log_damping():
+    s = renderable_space(rigid(), mass=[-0.1, 0.1], damping=[-0.5, 9.0], delay_samples=1)
+    h = np.log10(np.maximum(s.k_max, 1.0))
+    u = np.array([-math.log10(1.5), 1.0])  # sign(B) log10(1 + |B|/1 N s/m)
+    assert s.volume == pytest.approx(0.2 * (u[1] - u[0]) * h.mean(), rel=1e-12)
+    assert renderable_space(rigid(), mass=[0.1], damping=[1.0, 9.0], delay_samples=1).volume == 0.0
+
+
+@PROPS
+@given(eps=st.floats(0.02, 0.5), factor=st.floats(1.1, 5.0), M=st.floats(-0.3, 0.3), B=st.floats(-1.0, 20.0))
+def test_accurate_nests_in_stable_and_grows_with_the_tolerance(eps, factor, M, B):
+    band = QualitySettings(band=(2.0, 30.0), tolerance=eps)
+    wide = QualitySettings(band=(2.0, 30.0), tolerance=min(10.0, eps * factor))
+    a = renderable_space(rigid(), [M], [B], 1, qualities=("stable", "accurate"), settings=band)
+    b = renderable_space(rigid(), [M], [B], 1, qualities=("accurate",), settings=wide)
+    assert a.by_quality["accurate"][0, 0] <= a.by_quality["stable"][0, 0]
+    assert a.by_quality["accurate"][0, 0] <= b.k_max[0, 0]
+
+
+@PROPS
+@given(q1=st.floats(1e-7, 1e-4), factor=st.floats(1.0, 10.0), M=st.floats(-0.01, 0.01), B=st.floats(-5.0, 5.0))
+def test_quiet_shrinks_with_a_coarser_encoder(q1, factor, M, B):
+    fine = renderable_space(rigid(), [M], [B], 1, qualities=("quiet",), settings=QualitySettings(encoder_resolution=q1))
+    coarse = renderable_space(rigid(), [M], [B], 1, qualities=("quiet",),
+                              settings=QualitySettings(encoder_resolution=min(q1 * factor, 1e-2)))
+    assert coarse.k_max[0, 0] <= fine.k_max[0, 0]
+
+
+@PROPS
+@given(b1=st.floats(0.1, 10.0), extra=st.floats(0.0, 10.0), M=st.floats(-2e-3, 2e-3), B=st.floats(-1.0, 1.0))
+def test_passive_grows_with_the_device_damping(b1, extra, M, B):
+    """Colgate-Schenkel: b >= K a + c, so more physical damping b never shrinks the passive K."""
+    lo = renderable_space(rigid(b=b1), [M], [B], 1, qualities=("passive",)).k_max[0, 0]
+    hi = renderable_space(rigid(b=b1 + extra), [M], [B], 1, qualities=("passive",)).k_max[0, 0]
+    assert hi >= lo * (1 - 1e-9)
+
+
+@pytest.mark.parametrize(("kwargs", "field"), [
+    ({"mass": [0.0, float("nan")]}, "mass"),
+    ({"mass": []}, "mass"),
+    ({"damping": np.array([])}, "damping"),
+    ({"mass": [0.2, 0.1]}, "mass"),
+    ({"mass": [2e3]}, "mass"),
+    ({"damping": [1.0, float("inf")]}, "damping"),
+    ({"qualities": ("stable", "pleasant")}, "qualities"),
+    ({"qualities": ("accurate",), "settings": QualitySettings(band=(1.0, 1e4))}, "band"),
+    ({"qualities": ("quiet",)}, "encoder_resolution"),
+    ({"settings": {"tolerance": 0.1}}, "settings"),
+    ({"velocity_filter": VelocityFilter("butter2", cutoff=5e3)}, "cutoff"),
+    ({"acceleration": "second"}, "acceleration"),
+])
+def test_bad_input_names_the_field(kwargs, field):
+    args = {"mass": [0.0], "damping": [1.0], **kwargs}
+    with pytest.raises(ValidationError) as err:
+        renderable_space(rigid(), args.pop("mass"), args.pop("damping"), 1, **args)
+    assert err.value.field == field
+
+
+@pytest.mark.parametrize(("kwargs", "field"), [
+    ({"band": (10.0, 1.0)}, "band"),
+    ({"band": (float("nan"), 1.0)}, "band"),
+    ({"tolerance": 0.0}, "tolerance"),
+    ({"grasps": ()}, "grasps"),
+    ({"k_range": (0.0, 10.0)}, "k_range"),
+    ({"encoder_resolution": 1.0}, "encoder_resolution"),
+])
+def test_bad_settings_name_the_field(kwargs, field):
+    with pytest.raises(ValidationError) as err:
+        QualitySettings(**kwargs)
+    assert err.value.field == field
+
+
+def test_acceleration_estimate_records():
+    acc = AccelerationEstimate("filtered_velocity", "butter2", 2 * math.pi * 30)
+    assert AccelerationEstimate.from_dict(acc.to_dict()) == acc
+    with pytest.raises(ValidationError) as err:
+        AccelerationEstimate(lowpass="lowpass1")
+    assert err.value.field == "cutoff"
+    with pytest.raises(ValidationError) as err:
+        AccelerationEstimate(kind="third_difference")
+    assert err.value.field == "kind"
