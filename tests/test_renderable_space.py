@@ -264,3 +264,20 @@ def test_acceleration_estimate_records():
     with pytest.raises(ValidationError) as err:
         AccelerationEstimate(kind="third_difference")
     assert err.value.field == "kind"
+
+
+@pytest.mark.parametrize(("frac", "stable"), [(0.5, True), (1.5, False)])
+def test_the_simulator_renders_the_mass_term(frac, stable):
+    """The nonlinear simulator runs the same controller model: inside the space the run settles,
+    beyond its edge it does not (a steady push holds the device in the god-object wall)."""
+    from analysis.sampled import Scenario, Simulator
+    from analysis.sampled.loop import LoopSpec
+    from analysis.sampled.terminations import HANDS_OFF
+
+    M, B = 0.3, 2.0
+    k = float(renderable_space(rigid(), [M], [B], 1).k_max[0, 0])
+    assert 1.0 < k < 1e9
+    spec = LoopSpec("impedance", (frac * k, B), delay_samples=1, mass=M)
+    sc = Scenario(name="mass", causality="admittance", wall=True, wall_position=0.0, grasp=HANDS_OFF,
+                  push_force=5.0, push_start=0.0, initial_position=0.0, duration=1.5)
+    assert (Simulator(rigid(), spec, sc).run().verdict.kind == "stable") is stable
