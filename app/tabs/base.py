@@ -15,10 +15,12 @@ them in ``update_views``.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-from PySide6.QtCore import QEvent, QObject, QSize, QTimer, Signal
+import pyqtgraph as pg
+from PySide6.QtCore import QEvent, QObject, QSize, Qt, QTimer, Signal
 from PySide6.QtGui import QResizeEvent, QShowEvent
 from PySide6.QtWidgets import QAbstractScrollArea, QFrame, QLabel, QScrollArea, QVBoxLayout, QWidget
 
@@ -28,10 +30,121 @@ from app.core.model import ProfileModel
 from app.core.settings import Settings
 from app.views.base import PlotView
 
-__all__ = ["AppContext", "AnalysisTab", "scroll_body", "PLOT_MIN_HEIGHT"]
+__all__ = ["AppContext", "AnalysisTab", "scroll_body", "PLOT_MIN_HEIGHT", "DataAreaFloor"]
 
-#: The least height of a plot (its PlotWidget) on any tab: below it a tab scrolls instead.
+#: The least height of a plot's data area (its ViewBox) on any tab: below it a tab scrolls instead.
 PLOT_MIN_HEIGHT = 120
+
+
+class DataAreaFloor(QObject):
+    """Keeps a plot view's data area (the ViewBox) at least :data:`PLOT_MIN_HEIGHT` tall, as tall as its y
+    axis's title is long, and the plot as wide as its axes and colour bar beside a data area that wide.
+
+    The plot widget's minimum height is the data area's floor plus what the plot item lays out around
+    it (title, x axis and its label, a legend row below the axis: their height changes with the
+    legend's columns, so it is measured again whenever the view box is resized).  (The title and the
+    warning above and below the plot are kept whole by the tab's scroll area: :func:`fit_wrapped_labels`.)
+    """
+
+    def __init__(self, view: PlotView) -> None:
+        super().__init__(view)
+        self.view = view
+        self._timer = QTimer(self)
+        self._timer.setSingleShot(True)
+        self._timer.setInterval(0)
+        self._timer.timeout.connect(self.fit)
+        view.plot.getViewBox().sigResized.connect(self._timer.start)
+        view.plot_widget.installEventFilter(self)
+        self._own_width = view.plot_widget.minimumWidth()
+        self.fit()
+
+    def overhead(self) -> int:
+        """The plot widget's height that is not data area (frame, title, axes, legend row)."""
+        pw = self.view.plot_widget
+        item = self.view.plot
+        item.layout.activate()
+        vb = self.view.plot.getViewBox()
+        outside = max(0.0, pw.height() - item.size().height())  # the view's frame (the item may overflow it)
+        return math.ceil(outside + item.size().height() - vb.size().height())
+
+    def row_width(self) -> float:
+        """The least width of the plot item's row that holds the data area (axes, colour bar, margins)."""
+        item = self.view.plot
+        layout = item.layout
+        vb = item.getViewBox()
+        row = next((r for r in range(layout.rowCount()) for c in range(layout.columnCount())
+                    if layout.itemAt(r, c) is vb), None)
+        if row is None:
+            return 0.0
+        cells = [layout.itemAt(row, c) for c in range(layout.columnCount())]
+        shown = [c for c in cells if c is not None and c is not vb and c.isVisible()]
+        margins = layout.getContentsMargins()
+        spacing = layout.horizontalSpacing() * max(0, len(shown))
+        return sum(c.effectiveSizeHint(Qt.SizeHint.MinimumSize).width() for c in shown) + spacing + margins[0] + margins[2]
+
+    def y_titles(self) -> int:
+        """The data area's height that the vertical axes' titles need (each title runs along its axis,
+        whose height differs from the data area's by a fixed amount: a colour bar's axis is shorter)."""
+        vb = self.view.plot.getViewBox()
+        need = 0.0
+        for item in self.view.plot_widget.scene().items():
+            if not (isinstance(item, pg.AxisItem) and item.orientation in ("left", "right") and item.isVisible()
+                    and item.label.isVisible() and item.labelText):
+                continue
+            margin = item.label.document().documentMargin()
+            length = item.label.boundingRect().width() - 2 * margin  # the title is turned a quarter
+            need = max(need, length + 4 + vb.size().height() - item.size().height())
+        return math.ceil(need)
+
+    def fit(self) -> None:
+        pw = self.view.plot_widget
+        least = max(PLOT_MIN_HEIGHT, self.y_titles()) + self.overhead()
+        if pw.minimumHeight() != least:
+            pw.setMinimumHeight(least)
+        # never narrower than the axes, colour bar and their titles beside a data area PLOT_MIN_HEIGHT wide
+        # (else they are cut on the right); the plot's title is not counted: a view may break it into lines
+        # when narrow, and its width when wide would keep the plot wide
+        width = max(self._own_width, math.ceil(self.row_width()) + PLOT_MIN_HEIGHT + pw.width() - pw.viewport().width())
+        if pw.minimumWidth() != width:
+            pw.setMinimumWidth(width)
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt API
+        if event.type() in (QEvent.Type.Resize, QEvent.Type.Show, QEvent.Type.LayoutRequest):
+            self._timer.start()
+        return super().eventFilter(watched, event)
+
+
+def fit_wrapped_labels(body: QWidget) -> bool:
+    """Give each word-wrapped label of ``body`` (not those in a scroll area of their own) the height its
+    text needs at its laid-out width as its minimum height; whether any changed.
+
+    Qt computes a wrapped label's minimum height for another width, and a layout in height-for-width
+    mode then gives the label its height by taking it from the plots beside it (a splitter does not
+    pass height-for-width on at all).  With the label's own height as its minimum, and height-for-width
+    off, every layout and splitter keeps both whole; a label's own minimum height stays its floor.
+    """
+    changed = False
+    for label in body.findChildren(QLabel):
+        if not (label.wordWrap() and label.isVisibleTo(body) and label.width() > 1):
+            continue
+        parent = label.parentWidget()
+        while parent is not None and parent is not body and not isinstance(parent, QAbstractScrollArea):
+            parent = parent.parentWidget()
+        if parent is not body:
+            continue
+        policy = label.sizePolicy()
+        if policy.hasHeightForWidth():  # (QLabel turns it on again with every new text)
+            policy.setHeightForWidth(False)
+            label.setSizePolicy(policy)
+        floor = label.property("ownMinimumHeight")
+        if floor is None:
+            floor = label.minimumHeight()
+            label.setProperty("ownMinimumHeight", floor)
+        need = max(int(floor), label.heightForWidth(label.width()) if label.text() else 0)
+        if label.minimumHeight() != need:
+            label.setMinimumHeight(need)
+            changed = True
+    return changed
 
 
 class _TabScroll(QScrollArea):
@@ -56,8 +169,9 @@ class _TabScroll(QScrollArea):
         body = self.widget()
         if body is None:
             return
-        least = body.minimumSizeHint().expandedTo(body.minimumSize())
         view = self.maximumViewportSize()  # the viewport's size without scroll bars
+        fit_wrapped_labels(body)  # their minimum heights for their widths, before the body's minimum is read
+        least = body.minimumSizeHint().expandedTo(body.minimumSize())
         width = max(least.width(), view.width())
         if least.height() > view.height():  # a vertical scroll bar takes part of the width
             width = max(least.width(), view.width() - self.verticalScrollBar().sizeHint().width())
@@ -66,28 +180,6 @@ class _TabScroll(QScrollArea):
             height = max(least.height(), view.height() - self.horizontalScrollBar().sizeHint().height())
         if body.size() != QSize(width, height):
             body.resize(width, height)
-        deficit = self._wrapped_deficit()  # word-wrapped labels at this width need more than the minimum said
-        if deficit > 0:
-            body.resize(width, height + deficit)
-
-    def _wrapped_deficit(self) -> int:
-        """How many pixels the body's word-wrapped labels lack at their laid-out width (not those in a
-        scroll area of their own)."""
-        body = self.widget()
-        layout = body.layout()
-        if layout is None:
-            return 0
-        layout.activate()
-        missing = 0
-        for label in body.findChildren(QLabel):
-            if not (label.wordWrap() and label.isVisibleTo(body) and label.width() > 1):
-                continue
-            parent = label.parentWidget()
-            while parent is not None and parent is not body and not isinstance(parent, QAbstractScrollArea):
-                parent = parent.parentWidget()
-            if parent is body:
-                missing += max(0, label.heightForWidth(label.width()) - label.height())
-        return missing
 
     def resizeEvent(self, event: QResizeEvent) -> None:  # noqa: N802 - Qt API
         super().resizeEvent(event)
@@ -95,8 +187,8 @@ class _TabScroll(QScrollArea):
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt API
         if event.type() in (QEvent.Type.LayoutRequest, QEvent.Type.Resize) and watched is not None:
-            if watched is self.widget() and event.type() == QEvent.Type.LayoutRequest:
-                QTimer.singleShot(0, self, self.fit_body)  # after the layout took the new minimum
+            if watched is self.widget():  # after the layout took the new minimum, or the labels their widths
+                QTimer.singleShot(0, self, self.fit_body)
             elif watched is self.viewport():
                 self.fit_body()
         return super().eventFilter(watched, event)
@@ -140,6 +232,7 @@ class AnalysisTab(QWidget):
         self.refreshes = 0
         self.dark = False  # the theme, for the rich texts a tab writes (app.views.base.for_theme)
         self._built = False
+        self._floors: list[DataAreaFloor] = []
 
     @classmethod
     def register_nodes(cls, graph: ComputeGraph) -> None:
@@ -161,8 +254,8 @@ class AnalysisTab(QWidget):
             return
         self._built = True
         self.build()
-        for view in self.views():  # a plot never shrinks below a readable height: the tab scrolls
-            view.plot_widget.setMinimumHeight(max(view.plot_widget.minimumHeight(), PLOT_MIN_HEIGHT))
+        for view in self.views():  # a plot's data area never shrinks below a readable height: the tab scrolls
+            self._floors.append(DataAreaFloor(view))
         self.apply_theme(self.dark)
         self.viewsBuilt.emit()
 

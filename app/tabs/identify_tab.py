@@ -7,16 +7,24 @@ section in one undo step).  Right: measured against fitted Bode plots with the r
 coherence, the parameter table with intervals, the order table (AIC, BIC, residual for
 n = 1..N) and the robust design over the profile's parameter box with the line that says whether
 the current coupling holds for the whole box (:func:`analysis.study.robust_designs`).
+
+Issue 23: the bins the fit left out are greyed on the plots (:class:`~app.views.bode_view.BodeView`),
+the summary says how many bins of each measurement were used and why
+(:attr:`~analysis.identify.ChainFit.bins_summary`), and the goodness-of-fit verdict stands under
+it (:attr:`goodness`: a warning when the model does not explain the data, and the intervals in the
+parameter table are then labelled "not trustworthy").
 """
 
 from __future__ import annotations
 
+import html
 import os
 from collections.abc import Sequence
 
 from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QScrollArea, QTabWidget, QVBoxLayout, QWidget
 
+from analysis.identify import ChainFit
 from analysis.study import IdentifyResult, RobustDesigns, fit_curves, profile_with_fit
 
 from app.core import nodes_identify
@@ -26,10 +34,12 @@ from app.panels.identify_panel import IdentifyPanel
 from app.tabs.base import AnalysisTab, scroll_body
 from app.views.base import PlotView
 from app.views.bode_view import BodeView, OrderTable, ParameterTable
+from app.views.placement import CenterMessage
 from app.widgets.node_progress import NodeProgress
 from analysis.study.citations import ADAMS
 from analysis.study.quantities import format_number
 from app.widgets.citation_note import CitationNote
+from app.widgets.colors import for_theme
 
 __all__ = ["IdentifyTab", "TAB"]
 
@@ -64,6 +74,12 @@ class IdentifyTab(AnalysisTab):
         self.summary.setObjectName("identifySummary")
         self.summary.setWordWrap(True)
         self.summary.setMinimumWidth(0)
+        self.goodness = QLabel()  # the goodness-of-fit verdict of the fit shown (empty before a fit)
+        self.goodness.setObjectName("identifyGoodness")
+        self.goodness.setWordWrap(True)
+        self.goodness.setMinimumWidth(0)
+        self.goodness.setTextFormat(Qt.TextFormat.RichText)
+        self._goodness_text = ""
         self.robust = QLabel()
         self.robust.setObjectName("robustVerdict")
         self.robust.setWordWrap(True)
@@ -73,6 +89,11 @@ class IdentifyTab(AnalysisTab):
         self.result: IdentifyResult | None = None
         self._run = 0
         self._layout()
+        self.placeholders = {view: CenterMessage(view) for view in self.bode.plot_views()}
+        self._empty: dict[PlotView, bool] = {}  # whether each plot is drawn as empty (no ticks) now
+        self.panel.files.model().rowsInserted.connect(self.show_placeholders)
+        self.panel.files.model().rowsRemoved.connect(self.show_placeholders)
+        self.viewsBuilt.connect(self.show_placeholders)  # after the theme: the message takes its colour
         self.panel.fitRequested.connect(self.fit)
         self.panel.useRequested.connect(self.use_device)
         self.fit_progress.rerun.connect(lambda _name: self.fit())
@@ -86,6 +107,7 @@ class IdentifyTab(AnalysisTab):
         col.addWidget(self.panel, 1)
         col.addWidget(self.fit_progress)
         col.addWidget(self.summary)
+        col.addWidget(self.goodness)
         scroll = QScrollArea()
         scroll.setWidget(left)
         scroll.setWidgetResizable(True)
@@ -111,6 +133,27 @@ class IdentifyTab(AnalysisTab):
 
     def views(self) -> list[PlotView]:
         return self.bode.plot_views()
+
+    @Slot()
+    def show_placeholders(self) -> None:
+        """An empty plot says what to do in its middle, with no axis numbers or grid (a range with no
+        data means nothing); a plot with data shows its axes again."""
+        waiting = ("Measurements loaded: press Fit to see them against the fitted model." if self.panel.measurements
+                   else "No measurements yet: add measurement files, then press Fit.")
+        for view, message in self.placeholders.items():
+            empty = not view.export_series()
+            view.empty_message = waiting if empty else ""
+            message.set_text(view.empty_message, view.palette_colors()["fg"])
+            if self._empty.get(view) != empty:  # (an axis is laid out again when its ticks change)
+                self._empty[view] = empty
+                for name in ("left", "bottom"):
+                    view.plot.getAxis(name).setTicks([] if empty else None)  # no ticks: no numbers, no grid
+
+    def apply_theme(self, dark: bool) -> None:
+        super().apply_theme(dark)
+        if self.is_built():
+            self.show_placeholders()  # the message in the theme's text colour
+            self.goodness.setText(for_theme(self._goodness_text, dark))
 
     # -- fitting ---------------------------------------------------------------------------------
     def load_files(self, paths: Sequence[str | os.PathLike]) -> list[str]:
@@ -153,10 +196,29 @@ class IdentifyTab(AnalysisTab):
         notes = [f"Residual {format_number(fit.residual, 3)} (RMS of the weighted log-response), "
                  f"AIC {format_number(fit.aic)}, BIC {format_number(fit.bic)}"
                  + ("" if fit.converged else " — did NOT converge")]
-        notes += list(fit.warnings)  # the non-identifiable keys, grouped by what would fix them, among them
+        if fit.bins_summary:
+            notes.append(f"Bins: {fit.bins_summary}")
+        notes += [w for w in fit.warnings  # the non-identifiable keys, grouped by what would fix them, among them
+                  if fit.goodness is None or w != fit.goodness.message]  # (that one is the verdict below)
         self.summary.setText("\n".join(notes))
+        self.show_goodness(fit)
         self.panel.use_button.setEnabled(True)
+        self.show_placeholders()
         self.fitted.emit()
+
+    def show_goodness(self, fit: ChainFit | None) -> None:
+        """The goodness-of-fit verdict of ``fit``: a warning when the model does not explain the data
+        (its intervals are then not trustworthy), a plain line when it does."""
+        g = None if fit is None else fit.goodness
+        if g is None:
+            text = ""
+        elif g.passed:
+            text = f"<span style='color:#2b8a3e'>Goodness of fit: {html.escape(g.message)}.</span>"
+        else:
+            text = f"<b style='color:#c92a2a'>Warning: {html.escape(g.message)}.</b>"
+        self._goodness_text = text
+        self.goodness.setText(for_theme(text, self.dark))
+        self.goodness.setVisible(bool(text))
 
     @Slot()
     def use_device(self) -> str | None:
@@ -204,6 +266,7 @@ class IdentifyTab(AnalysisTab):
             pairs = fit_curves(self.ctx.model.profile)  # the profile's embedded measurements, if any
             if pairs:
                 self.bode.show_pairs(pairs)
+        self.show_placeholders()
         self.refreshes += 1
         self.stale = False
 

@@ -140,13 +140,31 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
         scroll.setWidget(controls)
         scroll.setWidgetResizable(True)
         scroll.setMinimumWidth(270)
-        scroll.setMaximumWidth(380)
-        scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        # as wide as its fields and check boxes want (with the vertical scroll bar), never cut on the right:
+        # narrower (a small window), it scrolls sideways
+        scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAsNeeded)
+        scroll.setMaximumWidth(self._controls_width(scroll))
         return scroll
+
+    @staticmethod
+    def _controls_width(scroll: QScrollArea) -> int:
+        """The settings panel's width with nothing cut: its contents, the vertical scroll bar, the frame."""
+        inner = scroll.widget()
+        return (inner.minimumSizeHint().expandedTo(inner.minimumSize()).width()
+                + scroll.verticalScrollBar().sizeHint().width() + 2 * scroll.frameWidth())
 
     @Slot(bool)
     def show_controls(self, show: bool) -> None:
-        """Show or collapse the settings panel (collapsed, the plots take the tab's whole width)."""
+        """Show or collapse the settings panel (collapsed, the plots take the tab's whole width); shown,
+        it gets its whole width if the plots keep theirs."""
+        if show and self.controls.isHidden():
+            want = self._controls_width(self.controls)
+            self.controls.setMaximumWidth(want)
+            self.controls.setVisible(True)
+            total = sum(self.split.sizes())
+            plots = self.split.widget(1).minimumSizeHint().width()
+            width = max(self.controls.minimumWidth(), min(want, total - plots - self.split.handleWidth()))
+            self.split.setSizes([width, max(0, total - width)])
         self.controls.setVisible(show)
         if self.settings_button.isChecked() != show:
             self.settings_button.setChecked(show)

@@ -44,7 +44,7 @@ from app.core import nodes_zwidth
 from app.core.compute_graph import ComputeGraph
 from app.core.nodes_zwidth import OPTIMUM_NODE, REGION_NODE, TRIALS_NODE, ZWIDTH_NODES
 from app.tabs.async_jobs import AsyncJobs
-from app.tabs.base import AnalysisTab
+from app.tabs.base import AnalysisTab, scroll_body
 from app.views.base import PlotView
 from app.views.filter_optimum_view import FilterOptimumView
 from app.views.zwidth_region_view import ZWidthRegionView
@@ -103,9 +103,9 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         split.addWidget(right)
         split.setStretchFactor(1, 1)
         split.setChildrenCollapsible(False)
-        lay = QVBoxLayout(self)
+        lay = QVBoxLayout(scroll_body(self))  # scrolls below its minimum size
         lay.setContentsMargins(4, 2, 4, 4)
-        lay.addWidget(split)
+        lay.addWidget(split, 1)
         lay.addWidget(CitationNote(ADAMS, COLGATE_SCHENKEL))  # the full citation of the tab's equation numbers
         ctx.graph.ready.connect(self._on_ready)
         ctx.graph.cancelled.connect(self.on_job_cancelled)

@@ -35,9 +35,10 @@ def test_every_plot_is_readable_at_1280_by_720(win, qtbot):
             if widget.isVisible():
                 seen += 1
                 assert widget.height() >= PLOT_MIN_HEIGHT, (win.tabs.tabText(i), view.title, widget.height())
-        # the contents keep their minimum size: a tab scrolls rather than squeeze them
+        # the contents keep their minimum size: a tab scrolls rather than squeeze them (once laid out: a
+        # plot's floor and the labels' heights follow its results over a few turns of the event loop)
         for area in tab.findChildren(QScrollArea, "tabScroll"):
             body = area.widget()
-            assert body.width() >= body.minimumSizeHint().width() - 1
-            assert body.height() >= body.minimumSizeHint().height() - 1
+            qtbot.waitUntil(lambda: body.width() >= body.minimumSizeHint().width() - 1
+                            and body.height() >= body.minimumSizeHint().height() - 1, timeout=3000)
     assert seen >= 20
