@@ -155,14 +155,18 @@ def test_quiet_is_the_velocity_noise_criterion_at_zero_mass():
     s = QualitySettings(encoder_resolution=q, force_noise=F)
     b_noise = F / (q * math.sqrt(2.0) / T / math.sqrt(12.0))  # sigma_v of the backward difference
     ctrl = RenderingController(1)
-    assert renders_quietly(rigid(), ctrl, 0.0, 0.999 * b_noise, s)
-    assert not renders_quietly(rigid(), ctrl, 0.0, 1.001 * b_noise, s)
-    assert not renders_quietly(rigid(), ctrl, 0.0, -1.001 * b_noise, s)
+    assert renders_quietly(rigid(), ctrl, 0.0, 0.999 * b_noise, 1e6, s)
+    assert not renders_quietly(rigid(), ctrl, 0.0, 1.001 * b_noise, settings=s)
+    assert not renders_quietly(rigid(), ctrl, 0.0, -1.001 * b_noise, settings=s)
     # B V + M A: for the second difference sum h_V h_A = (1*1 + (-1)(-2))/T^3 = 3/T^3
     M, B = 1e-3, 2.0
     sigma = q / math.sqrt(12) * math.sqrt(B * B * 2 / T ** 2 + 2 * B * M * 3 / T ** 3 + M * M * 6 / T ** 4)
-    assert renders_quietly(rigid(), ctrl, M, B, QualitySettings(encoder_resolution=q, force_noise=sigma * 1.001))
-    assert not renders_quietly(rigid(), ctrl, M, B, QualitySettings(encoder_resolution=q, force_noise=sigma * 0.999))
+    assert renders_quietly(rigid(), ctrl, M, B, settings=QualitySettings(encoder_resolution=q, force_noise=sigma * 1.001))
+    assert not renders_quietly(rigid(), ctrl, M, B,
+                               settings=QualitySettings(encoder_resolution=q, force_noise=sigma * 0.999))
+    with pytest.raises(ValidationError) as err:
+        renders_quietly(rigid(), ctrl, M, B)
+    assert err.value.field == "encoder_resolution"
 
 
 def test_the_space_of_every_quality_is_the_smallest_and_progress_reaches_the_end(hbfd):
@@ -281,3 +285,18 @@ def test_the_simulator_renders_the_mass_term(frac, stable):
     sc = Scenario(name="mass", causality="admittance", wall=True, wall_position=0.0, grasp=HANDS_OFF,
                   push_force=5.0, push_start=0.0, initial_position=0.0, duration=1.5)
     assert (Simulator(rigid(), spec, sc).run().verdict.kind == "stable") is stable
+
+
+def test_the_accurate_edge_agrees_with_the_predicate():
+    """A 0.3 kg mass on a light spring: the resonance sqrt(K/M) enters the band, where the
+    relative error of K - w^2 M blows up; the space's edge is the predicate's."""
+    from analysis.sampled import renders_accurately
+
+    s = QualitySettings(band=(1.0, 10.0), tolerance=0.05)
+    sp = renderable_space(rigid(), [0.3], [0.5], 1, qualities=("stable", "accurate"), settings=s)
+    k = float(sp.by_quality["accurate"][0, 0])
+    assert 1.0 < k < 0.1 * sp.by_quality["stable"][0, 0]
+    ctrl = RenderingController(1)
+    assert renders_accurately(rigid(), ctrl, 0.3, 0.5, 0.5 * k, s)
+    assert renders_accurately(rigid(), ctrl, 0.3, 0.5, 0.999 * k, s)
+    assert not renders_accurately(rigid(), ctrl, 0.3, 0.5, 1.001 * k, s)

@@ -288,7 +288,7 @@ def passive_k(device: Device, controller: RenderingController, mass: np.ndarray,
 
 
 def renders_passively(device: Device, controller: RenderingController, mass: float, damping: float,
-                      stiffness: float) -> bool:
+                      stiffness: float, settings: QualitySettings | None = None) -> bool:
     """Quality ``"passive"``: Colgate & Schenkel's test with the mass term (module docstring).
 
     J. E. Colgate and G. G. Schenkel, J. Robotic Systems 14(1), 1997: the rigid-body device
@@ -308,6 +308,8 @@ def renders_passively(device: Device, controller: RenderingController, mass: flo
         Virtual damping B [N s/m].
     stiffness : float
         Virtual stiffness K [N/m].
+    settings : QualitySettings or None, optional
+        Unused (the predicates share one signature; passivity has no setting).
 
     Returns
     -------
@@ -412,8 +414,11 @@ def quantization_force_noise(T: float, controller: RenderingController, mass: np
 
 
 def renders_quietly(device: Device, controller: RenderingController, mass: float, damping: float,
-                    settings: QualitySettings) -> bool:
+                    stiffness: float = 0.0, settings: QualitySettings | None = None) -> bool:
     """Quality ``"quiet"``: the quantization force noise of ``B V + M A`` is within the limit.
+
+    The four predicates share the signature ``(device, controller, mass, damping, stiffness,
+    settings)``.
 
     The noise criterion of :mod:`analysis.sampled.velocity_noise` (Chawda, Celik & O'Malley,
     ASME JDSMC 2015; Colgate & Brown 1994) through the velocity and the acceleration estimates:
@@ -430,8 +435,10 @@ def renders_quietly(device: Device, controller: RenderingController, mass: float
         Virtual mass M [kg].
     damping : float
         Virtual damping B [N s/m].
-    settings : QualitySettings
-        Encoder resolution and force-noise limit.
+    stiffness : float, optional
+        Virtual stiffness K [N/m]: validated, does not enter (module docstring).
+    settings : QualitySettings or None, optional
+        Encoder resolution (required) and force-noise limit.
 
     Returns
     -------
@@ -443,6 +450,8 @@ def renders_quietly(device: Device, controller: RenderingController, mass: float
     ValidationError
         When ``settings`` has no encoder resolution.
     """
+    settings = settings or QualitySettings()
+    RenderedEnvironment(mass, damping, stiffness)
     settings.check(device.sample_time, ("quiet",))
     M, B = check_virtual_mass("mass", mass), check_virtual_damping("damping", damping)
     f = quantization_force_noise(device.sample_time, controller, np.array([M]), np.array([B]),
