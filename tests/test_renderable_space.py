@@ -300,3 +300,18 @@ def test_the_accurate_edge_agrees_with_the_predicate():
     assert renders_accurately(rigid(), ctrl, 0.3, 0.5, 0.5 * k, s)
     assert renders_accurately(rigid(), ctrl, 0.3, 0.5, 0.999 * k, s)
     assert not renders_accurately(rigid(), ctrl, 0.3, 0.5, 1.001 * k, s)
+
+
+def test_results_pickle_for_process_pools_and_clusters():
+    """The batch layer ships spaces between processes: every result and record pickles by value."""
+    import pickle
+
+    from analysis.sampled import m_width
+
+    s = renderable_space(rigid(), [-0.1, 0.1], [1.0, 2.0], 1, qualities=("stable", "passive"))
+    back = pickle.loads(pickle.dumps(s))
+    assert np.array_equal(back.k_max, s.k_max) and back.qualities == s.qualities
+    assert all(np.array_equal(back.by_quality[q], s.by_quality[q]) for q in s.qualities)
+    assert back.controller == s.controller and back.settings == s.settings
+    w = m_width(rigid(), 1)
+    assert pickle.loads(pickle.dumps(w)).m_max == w.m_max

@@ -32,7 +32,6 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from types import MappingProxyType
 
 import numpy as np
 
@@ -280,7 +279,7 @@ def renderable_space(device: Device, mass, damping, delay_samples: int = 1,
         a.flags.writeable = False
     k = np.min(np.stack(list(ordered.values())), axis=0)
     k.flags.writeable = False
-    return RenderableSpace(mass=M, damping=B, k_max=k, by_quality=MappingProxyType(ordered),
+    return RenderableSpace(mass=M, damping=B, k_max=k, by_quality=dict(ordered),
                            volume=_volume(M, B, k, s), qualities=names, controller=ctrl, settings=s)
 
 
@@ -385,5 +384,5 @@ def m_width(device: Device, delay_samples: int = 1, velocity_filter: VelocityFil
     ordered = {q: by[q] for q in names}
     lo = max(v[0] for v in ordered.values())
     hi = min(v[1] for v in ordered.values())
-    return MWidth(m_min=min(lo, 0.0), m_max=max(hi, 0.0), by_quality=MappingProxyType(ordered), qualities=names,
+    return MWidth(m_min=min(lo, 0.0), m_max=max(hi, 0.0), by_quality=dict(ordered), qualities=names,
                   controller=ctrl)
