@@ -1,0 +1,68 @@
+"""Multi-DOF devices: one structural model, the exact sampled MIMO loop and the worst wall normal.
+
+Issue 25.  Every result of :mod:`analysis.sampled` is for one axis; here the device has ``m``
+Cartesian axes at the handle and the wall is rendered in Cartesian space:
+
+* :class:`StructuralModel` -- ``M q'' + C q' + K q = B_a u``, handle velocity ``J_h q'``, sensed
+  positions ``C_s q`` (:mod:`analysis.multidof.model`); :class:`RigidCartesianDevice` (the
+  handle's ``M_x``, ``C_x``) and :func:`chain_model` (today's chain
+  :class:`~analysis.chain.device.Device`) are special cases, and :func:`structural_model` maps
+  each to the general model;
+* :func:`closed_loop_matrices` / :func:`wall_radii` -- the exact sampled loop of the impedance
+  display against an isotropic wall, a plane wall or a full wall matrix, through the velocity
+  filter, the zero-order hold and the delay, hands-off or grasped
+  (:mod:`analysis.multidof.loop`);
+* :func:`critical_wall_stiffness` and :func:`worst_normal` -- the largest stable stiffness of a
+  wall, and the plane-wall normal with the smallest one, certified against a dense check of
+  directions (:mod:`analysis.multidof.limits`).
+
+The plant is discretized by :func:`analysis.chain.discretize.discretize_zoh` and cached by value
+as :func:`analysis.sampled.loop.discrete_plants` is; stability is
+:func:`analysis.sampled.loop.is_stable`; crossings are found by
+:func:`analysis.sampled.sweeps.first_crossing`.  Numpy and scipy only.
+
+Example
+-------
+>>> import numpy as np
+>>> from analysis.multidof import RigidCartesianDevice, critical_wall_stiffness
+>>> dev = RigidCartesianDevice(mass=np.diag([0.2, 0.4]), damping=np.zeros((2, 2)), sample_time=1e-3)
+>>> k = critical_wall_stiffness(dev, damping=1.0, delay_samples=1, normal=None)
+"""
+
+from __future__ import annotations
+
+from analysis.multidof.limits import (
+    DEFAULT_DIRECTIONS,
+    WorstNormal,
+    check_directions,
+    critical_wall_stiffness,
+    worst_normal,
+)
+from analysis.multidof.loop import closed_loop_matrices, discrete_plant, plant_matrices, wall_radii, wall_shape
+from analysis.multidof.model import (
+    SYMMETRY_RTOL,
+    DeviceLike,
+    RigidCartesianDevice,
+    StructuralModel,
+    chain_model,
+    structural_model,
+)
+
+__all__ = [
+    "DEFAULT_DIRECTIONS",
+    "DeviceLike",
+    "RigidCartesianDevice",
+    "SYMMETRY_RTOL",
+    "StructuralModel",
+    "WorstNormal",
+    "chain_model",
+    "check_directions",
+    "closed_loop_matrices",
+    "critical_wall_stiffness",
+    "discrete_plant",
+    "plant_matrices",
+    "structural_model",
+    "wall_radii",
+    "wall_shape",
+    "worst_normal",
+]

@@ -1,0 +1,260 @@
+"""The critical wall stiffness of a multi-DOF device, for a direction and for the worst one.
+
+:func:`critical_wall_stiffness` is the largest stable ``k`` of the wall ``K_w = k S``,
+``B_w = b S`` (:func:`analysis.multidof.loop.wall_shape`: isotropic, a plane wall of a given
+normal, or a shape matrix) found as the 1-DOF :func:`analysis.sampled.critical_stiffness` is:
+the first crossing of spectral radius 1 from small ``k`` (a geometric scan of 24 points per
+decade, then Brent's method to a relative bracket of 1e-12, keeping the stable end;
+:func:`analysis.sampled.sweeps.first_crossing`), on the exact MIMO loop of
+:mod:`analysis.multidof.loop`.
+
+:func:`worst_normal` is the plane wall whose normal gives the smallest critical stiffness:
+a dense check of directions (the half circle in 2-D, a Fibonacci lattice of the half sphere in
+3-D; ``n`` and ``-n`` are one wall), then a local optimization (bounded Brent in the angle in
+2-D, Nelder-Mead in the two sphere angles in 3-D) from the best local minima of the check.
+The result is the smallest stiffness of *every* direction evaluated, check and optimizer
+together, so no direction that was evaluated is stiffer-limited than the one reported (the
+conservative minimum), and :attr:`WorstNormal.stiffnesses` keeps the check.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import optimize
+
+from analysis.chain.velocity_filter import VelocityFilter
+from analysis.checks import integer, nonnegative
+from analysis.errors import ValidationError
+from analysis.multidof.loop import wall_radii, wall_shape
+from analysis.multidof.model import DeviceLike, structural_model
+from analysis.sampled.sweeps import first_crossing
+from analysis.sampled.terminations import HANDS_OFF, Grasp
+
+__all__ = ["critical_wall_stiffness", "worst_normal", "WorstNormal", "check_directions", "DEFAULT_DIRECTIONS"]
+
+#: Directions of the dense check of :func:`worst_normal` by number of axes (2-D: every 2.5 degrees).
+DEFAULT_DIRECTIONS = {1: 1, 2: 72, 3: 256}
+_REFINED = 3  # local minima of the check refined by the optimizer
+
+
+@dataclass(frozen=True)
+class WorstNormal:
+    """The plane wall with the smallest critical stiffness, and the dense check behind it.
+
+    Parameters
+    ----------
+    normal : numpy.ndarray
+        The worst unit normal, shape (m,) (its sign is arbitrary: ``n`` and ``-n`` are one wall).
+    stiffness : float
+        Its critical stiffness [N/m]: the smallest of every direction evaluated.
+    directions : numpy.ndarray
+        The unit normals of the dense check, shape (D, m).
+    stiffnesses : numpy.ndarray
+        Their critical stiffnesses [N/m], shape (D,).
+    evaluations : int
+        Directions evaluated in all (check and optimizer).
+    """
+
+    normal: np.ndarray
+    stiffness: float
+    directions: np.ndarray
+    stiffnesses: np.ndarray
+    evaluations: int
+
+
+def check_directions(axes: int, count: int) -> np.ndarray:
+    """The unit normals of the dense check: ``count`` of them over the half circle or half sphere.
+
+    Parameters
+    ----------
+    axes : int
+        Number of Cartesian axes, 1 to 3.
+    count : int
+        Number of directions (1 for one axis).
+
+    Returns
+    -------
+    numpy.ndarray
+        Unit normals, shape (count, axes): equally spaced angles in ``[0, pi)`` in 2-D, a
+        Fibonacci lattice of the upper half sphere in 3-D.
+
+    Raises
+    ------
+    ValidationError
+        When ``axes`` is not 1, 2 or 3.
+    """
+    if axes == 1:
+        return np.ones((1, 1))
+    if axes == 2:
+        th = np.pi * np.arange(count) / count
+        return np.column_stack([np.cos(th), np.sin(th)])
+    if axes == 3:
+        i = np.arange(count) + 0.5
+        z = 1.0 - i / count  # uniform in z on (0, 1]: equal areas of the half sphere
+        phi = math.pi * (3.0 - math.sqrt(5.0)) * i
+        r = np.sqrt(1.0 - z * z)
+        return np.column_stack([r * np.cos(phi), r * np.sin(phi), z])
+    raise ValidationError("axes", "1, 2 or 3 Cartesian axes for a worst normal", axes)
+
+
+def _stiffness_function(device: DeviceLike, damping: float, delay_samples: int, grasp: Grasp,
+                        velocity_filter: VelocityFilter | None,
+                        k_range: tuple[float, float]) -> Callable[[object], float]:
+    """``k_crit(normal)`` of one device and loop (normal as :func:`wall_shape` takes it)."""
+    model = structural_model(device)
+    b = nonnegative("damping", damping, "N s/m")
+    lo, hi = float(k_range[0]), float(k_range[1])
+    if not 0 < lo < hi:
+        raise ValidationError("k_range", "0 < low < high (N/m)", k_range)
+
+    def k_crit(normal: object) -> float:
+        S = wall_shape(model.axes, normal)
+
+        def f(ks: np.ndarray) -> np.ndarray:
+            return wall_radii(model, ks[:, None, None] * S, b * S, delay_samples, grasp, velocity_filter)
+
+        return float(first_crossing(f, lo, hi, increasing=True))
+
+    return k_crit
+
+
+def critical_wall_stiffness(device: DeviceLike, damping: float = 0.0, delay_samples: int = 0, normal: object = None,
+                            *, grasp: Grasp = HANDS_OFF, velocity_filter: VelocityFilter | None = None,
+                            k_range: tuple[float, float] = (1.0, 1e9)) -> float:
+    """Largest stable stiffness ``k`` [N/m] of a wall rendered in Cartesian space, exactly.
+
+    The wall is ``K_w = k S``, ``B_w = damping S`` against the god-object (module docstring of
+    :mod:`analysis.multidof.loop`).  With a chain :class:`~analysis.chain.device.Device` this is
+    :func:`analysis.sampled.critical_stiffness` (hands-off, god-object wall).
+
+    Parameters
+    ----------
+    device : StructuralModel, RigidCartesianDevice or Device
+        The device.
+    damping : float, optional
+        Wall damping ``b`` [N s/m], at least 0.
+    delay_samples : int, optional
+        Computation delay in samples.
+    normal : None, array_like of shape (m,) or (m, m), optional
+        ``None`` for the isotropic wall, a normal vector for a plane wall, or a wall shape
+        matrix (:func:`~analysis.multidof.loop.wall_shape`).
+    grasp : Grasp, optional
+        The human grasp at the handle (hands-off by default).
+    velocity_filter : VelocityFilter or None, optional
+        The velocity estimate of every axis; ``None`` for the backward difference.
+    k_range : tuple of (float, float), optional
+        The scanned ``k`` [N/m], ``(low, high)``.
+
+    Returns
+    -------
+    float
+        The largest stable ``k`` [N/m]; ``inf`` if none below ``k_range[1]`` is unstable,
+        ``0.0`` if ``k_range[0]`` already is.
+
+    Raises
+    ------
+    ValidationError
+        When the damping is negative, the normal is zero or of the wrong size, the range is
+        empty, or a setting of the loop is out of range.
+    """
+    return _stiffness_function(device, damping, delay_samples, grasp, velocity_filter, k_range)(normal)
+
+
+def _angles(u: np.ndarray) -> np.ndarray:
+    """Sphere angles (polar from +z, azimuth) of a unit normal."""
+    return np.array([math.acos(max(-1.0, min(1.0, float(u[2])))), math.atan2(float(u[1]), float(u[0]))])
+
+
+def _unit(axes: int, a: np.ndarray) -> np.ndarray:
+    """The unit normal of an angle (2-D) or of sphere angles (3-D)."""
+    if axes == 2:
+        return np.array([math.cos(a[0]), math.sin(a[0])])
+    s = math.sin(a[0])
+    return np.array([s * math.cos(a[1]), s * math.sin(a[1]), math.cos(a[0])])
+
+
+def _local_minima(values: np.ndarray, axes: int, dirs: np.ndarray) -> list[int]:
+    """Indices of the check's best local minima (2-D: on the circle of normals; 3-D: the best values)."""
+    finite = np.isfinite(values)
+    if axes == 2:
+        prev, nxt = np.roll(values, 1), np.roll(values, -1)
+        idx = [int(i) for i in np.flatnonzero(finite & (values <= prev) & (values <= nxt))]
+    else:
+        idx = [int(i) for i in np.flatnonzero(finite)]
+    return sorted(idx, key=lambda i: values[i])[:_REFINED]
+
+
+def worst_normal(device: DeviceLike, damping: float = 0.0, delay_samples: int = 0, *, grasp: Grasp = HANDS_OFF,
+                 velocity_filter: VelocityFilter | None = None, k_range: tuple[float, float] = (1.0, 1e9),
+                 directions: int | None = None) -> WorstNormal:
+    """The plane-wall normal with the smallest critical stiffness (module docstring).
+
+    Parameters
+    ----------
+    device : StructuralModel, RigidCartesianDevice or Device
+        The device, 1 to 3 Cartesian axes.
+    damping : float, optional
+        Wall damping ``b`` [N s/m] along the normal, at least 0.
+    delay_samples : int, optional
+        Computation delay in samples.
+    grasp : Grasp, optional
+        The human grasp at the handle (hands-off by default).
+    velocity_filter : VelocityFilter or None, optional
+        The velocity estimate of every axis; ``None`` for the backward difference.
+    k_range : tuple of (float, float), optional
+        The scanned ``k`` [N/m], ``(low, high)``.
+    directions : int or None, optional
+        Directions of the dense check, 4 to 100000; ``None`` for :data:`DEFAULT_DIRECTIONS`.
+
+    Returns
+    -------
+    WorstNormal
+        The worst normal, its critical stiffness (the smallest of every direction evaluated)
+        and the dense check.
+
+    Raises
+    ------
+    ValidationError
+        When the device has more than 3 axes, or an argument is out of range (as
+        :func:`critical_wall_stiffness`).
+    """
+    model = structural_model(device)
+    m = model.axes
+    if m not in DEFAULT_DIRECTIONS:
+        raise ValidationError("device", "a device of 1, 2 or 3 Cartesian axes for a worst normal", f"{m} axes")
+    count = DEFAULT_DIRECTIONS[m] if directions is None or m == 1 else integer("directions", directions, 4, 100000)
+    k_crit = _stiffness_function(model, damping, delay_samples, grasp, velocity_filter, k_range)
+    dirs = check_directions(m, count)
+    ks = np.array([k_crit(u) for u in dirs])
+    best_u, best_k = dirs[int(np.argmin(ks))], float(ks.min())
+    evaluations = len(dirs)
+    if m > 1:
+        seen: list[tuple[float, np.ndarray]] = []
+
+        def objective(a: np.ndarray) -> float:
+            u = _unit(m, np.atleast_1d(a))
+            k = k_crit(u)
+            seen.append((k, u))
+            return k
+
+        step = math.pi / count if m == 2 else math.sqrt(2.0 * math.pi / count)
+        for i in _local_minima(ks, m, dirs):
+            if m == 2:
+                th = math.atan2(dirs[i, 1], dirs[i, 0])
+                optimize.minimize_scalar(objective, bounds=(th - step, th + step), method="bounded",
+                                         options={"xatol": 1e-7})
+            else:
+                optimize.minimize(objective, _angles(dirs[i]), method="Nelder-Mead",
+                                  options={"xatol": 1e-7, "fatol": 1e-10 * ks[i], "maxfev": 150,
+                                           "initial_simplex": _angles(dirs[i]) + np.array([[0, 0], [step, 0],
+                                                                                           [0, step]])})
+        evaluations += len(seen)
+        for k, u in seen:
+            if k < best_k:
+                best_k, best_u = k, u
+    return WorstNormal(normal=np.asarray(best_u, dtype=float), stiffness=best_k, directions=dirs,
+                       stiffnesses=ks, evaluations=evaluations)
