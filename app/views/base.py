@@ -17,6 +17,7 @@ from analysis.study.quantities import format_number
 
 from app.widgets.colors import CURSOR_COLORS, PALETTE, WARNING_COLORS
 from app.views.legend_row import LegendRow
+from app.views.render import render_view
 
 __all__ = ["PlotView", "Series", "clean_xy", "fmt", "PALETTE", "mark_design_point", "rich_label"]
 
@@ -199,28 +200,9 @@ class PlotView(QWidget):
         self.export_actions = menu.actions()[-3:]
 
     def render_into(self, painter: QPainter, target: QRectF) -> None:
-        """Paint the plot into ``target`` of any painter (PNG, SVG, PDF), vector where it can be.
-
-        On screen the axes are cached as pixmaps and scatter markers come from a pixmap atlas; for
-        the length of this call both are switched off, so an SVG or PDF gets paths and text.
-        """
-        pw = self.plot_widget
-        items = pw.scene().items()
-        scatters = [it for it in items if isinstance(it, pg.ScatterPlotItem)]
-        cached = [(it, it.cacheMode()) for it in items if it.cacheMode() != QGraphicsItem.CacheMode.NoCache]
-        for it in scatters:
-            it.setExportMode(True, {"antialias": True})
-        for it, _mode in cached:
-            it.setCacheMode(QGraphicsItem.CacheMode.NoCache)
-        try:
-            painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
-            painter.setRenderHint(QPainter.RenderHint.TextAntialiasing, True)
-            pw.render(painter, target, pw.viewport().rect())
-        finally:
-            for it in scatters:
-                it.setExportMode(False)
-            for it, mode in cached:
-                it.setCacheMode(mode)
+        """Paint the plot into ``target`` of any painter (PNG, SVG, PDF), vector where it can be:
+        :func:`app.views.render.render_view` (the one export renderer)."""
+        render_view(self, painter, target)
 
     # -- helpers for subclasses -----------------------------------------------------------------
     def set_axis_labels(self, x_name: str, x_unit: str, y_name: str, y_unit: str) -> None:

@@ -1,7 +1,8 @@
 """Export plots: PNG at a chosen pixel width, SVG, and CSV of the plotted data.
 
 PNG and SVG render the plot's scene with QPainter, so the output size is what was asked for,
-independent of the screen's device pixel ratio (HiDPI-correct).  The CSV has one x and one y
+independent of the screen's device pixel ratio (HiDPI-correct), through the one export renderer
+:func:`app.views.render.render_view` (the plot as on screen, scaled as one picture).  The CSV has one x and one y
 column per curve (named with units), padded with empty cells where curves differ in length;
 every number in the unit its header names (never the log10 a log axis draws), and nothing the
 view leaves off-scale is dropped.  A view's notes (an empty result) come first as ``# note:`` lines.
@@ -19,8 +20,10 @@ from PySide6.QtGui import QColor, QImage, QPainter, QPicture
 from analysis.profiles import WriteError, atomic_write
 
 from app.views.base import PlotView
+from app.views.render import render_view, settle_layout
 
-__all__ = ["export_png", "export_svg", "svg_bytes", "export_csv", "csv_text", "ExportError", "FORMATS"]
+__all__ = ["export_png", "export_svg", "svg_bytes", "export_csv", "csv_text", "render_view", "settle_layout",
+           "ExportError", "FORMATS"]
 
 FORMATS = {"png": "PNG image (*.png)", "svg": "SVG drawing (*.svg)", "csv": "CSV data (*.csv)"}
 
@@ -53,7 +56,7 @@ def export_png(view: PlotView, path: str | os.PathLike, width: int, height: int 
     image.fill(QColor(view.palette_colors()["bg"]))
     painter = QPainter(image)
     try:
-        view.render_into(painter, QRectF(0, 0, width, height))
+        render_view(view, painter, QRectF(0, 0, width, height))
     finally:
         painter.end()
     buf = QByteArray()
@@ -104,7 +107,7 @@ def svg_bytes(view: PlotView, title: str, background: str, description: str = ""
     painter = QPainter(gen)
     try:
         painter.fillRect(QRectF(0, 0, src.width(), src.height()), QColor(background))
-        view.render_into(painter, QRectF(0, 0, src.width(), src.height()))
+        render_view(view, painter, QRectF(0, 0, src.width(), src.height()))
     finally:
         painter.end()
     dev.close()
