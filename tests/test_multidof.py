@@ -16,9 +16,13 @@ from analysis.multidof import (
     RigidCartesianDevice,
     StructuralModel,
     chain_model,
+    check_directions,
     closed_loop_matrices,
     critical_wall_stiffness,
     discrete_plant,
+    first_crossings,
+    wall_pencil,
+    wall_radii,
     wall_shape,
     worst_normal,
 )
@@ -107,13 +111,29 @@ def test_worst_normal_is_the_conservative_minimum_of_a_denser_check() -> None:
     dev = RigidCartesianDevice(mass=M, damping=C, sample_time=T)
     w = worst_normal(dev, damping=5.0, delay_samples=1, directions=24)
     assert np.linalg.norm(w.normal) == pytest.approx(1.0, abs=1e-12)
-    assert w.stiffness == critical_wall_stiffness(dev, 5.0, 1, normal=w.normal)
+    assert w.stiffness == pytest.approx(critical_wall_stiffness(dev, 5.0, 1, normal=w.normal), rel=SAME_K, abs=0)
     assert w.stiffness <= w.stiffnesses.min()
     assert w.evaluations > len(w.directions)
     th = np.linspace(0.0, np.pi, 181)
     denser = [critical_wall_stiffness(dev, 5.0, 1, normal=[math.cos(t), math.sin(t)]) for t in th]
     assert w.stiffness <= min(denser) * (1 + 1e-9)
     assert w.stiffness < critical_wall_stiffness(dev, 5.0, 1, normal=[1.0, 0.0])
+
+
+@pytest.mark.parametrize(("delay", "vf"), [(0, None), (2, VelocityFilter("butter2", 700.0))])
+def test_batched_crossings_equal_the_scalar_ones(delay: int, vf: VelocityFilter | None) -> None:
+    dev = RigidCartesianDevice(mass=[[0.3, 0.1], [0.1, 0.2]], damping=[[1.0, 0.3], [0.3, 0.5]], sample_time=T)
+    dirs = check_directions(2, 6)
+    shapes = np.concatenate([dirs[:, :, None] * dirs[:, None, :], np.eye(2)[None], 1e-9 * np.eye(2)[None]])
+    ks = first_crossings(*wall_pencil(dev, shapes, 5.0, delay, velocity_filter=vf))
+    scalar = [critical_wall_stiffness(dev, 5.0, delay, normal=S, velocity_filter=vf) for S in shapes]
+    assert np.isinf(ks[-1]) and np.isinf(scalar[-1])  # a wall too soft to cross below 1e9 N/m
+    assert ks[:-1] == pytest.approx(scalar[:-1], rel=SAME_K, abs=0)
+    assert np.all(np.isfinite(ks[:-1]) & (ks[:-1] > 0))
+    walls = shapes[:-1]
+    assert np.all(is_stable(wall_radii(dev, ks[:-1, None, None] * walls, 5.0 * walls, delay, velocity_filter=vf)))
+    assert not np.any(is_stable(wall_radii(dev, ks[:-1, None, None] * (1 + 1e-9) * walls, 5.0 * walls, delay,
+                                           velocity_filter=vf)))
 
 
 def test_worst_normal_of_a_diagonal_device_is_its_weakest_axis_limit() -> None:

@@ -34,11 +34,21 @@ from __future__ import annotations
 from analysis.multidof.limits import (
     DEFAULT_DIRECTIONS,
     WorstNormal,
+    PER_DECADE,
     check_directions,
     critical_wall_stiffness,
+    first_crossings,
     worst_normal,
 )
-from analysis.multidof.loop import closed_loop_matrices, discrete_plant, plant_matrices, wall_radii, wall_shape
+from analysis.multidof.loop import (
+    closed_loop_matrices,
+    discrete_plant,
+    loop_parts,
+    plant_matrices,
+    wall_pencil,
+    wall_radii,
+    wall_shape,
+)
 from analysis.multidof.model import (
     SYMMETRY_RTOL,
     DeviceLike,
@@ -51,6 +61,7 @@ from analysis.multidof.model import (
 __all__ = [
     "DEFAULT_DIRECTIONS",
     "DeviceLike",
+    "PER_DECADE",
     "RigidCartesianDevice",
     "SYMMETRY_RTOL",
     "StructuralModel",
@@ -60,8 +71,11 @@ __all__ = [
     "closed_loop_matrices",
     "critical_wall_stiffness",
     "discrete_plant",
+    "first_crossings",
+    "loop_parts",
     "plant_matrices",
     "structural_model",
+    "wall_pencil",
     "wall_radii",
     "wall_shape",
     "worst_normal",

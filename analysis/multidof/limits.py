@@ -29,15 +29,19 @@ from scipy import optimize
 from analysis.chain.velocity_filter import VelocityFilter
 from analysis.checks import integer, nonnegative
 from analysis.errors import ValidationError
-from analysis.multidof.loop import wall_radii, wall_shape
+from analysis.multidof.loop import wall_pencil, wall_shape
 from analysis.multidof.model import DeviceLike, structural_model
-from analysis.sampled.sweeps import first_crossing
+from analysis.sampled.loop import is_stable, spectral_radius
+from analysis.sampled.sweeps import CROSSING_RTOL, first_crossing
 from analysis.sampled.terminations import HANDS_OFF, Grasp
 
-__all__ = ["critical_wall_stiffness", "worst_normal", "WorstNormal", "check_directions", "DEFAULT_DIRECTIONS"]
+__all__ = ["critical_wall_stiffness", "worst_normal", "WorstNormal", "check_directions", "first_crossings",
+           "DEFAULT_DIRECTIONS", "PER_DECADE"]
 
 #: Directions of the dense check of :func:`worst_normal` by number of axes (2-D: every 2.5 degrees).
 DEFAULT_DIRECTIONS = {1: 1, 2: 72, 3: 256}
+#: Points a decade of the scan of :func:`first_crossings` (the scan of :func:`analysis.sampled.critical_stiffness`).
+PER_DECADE = 24
 _REFINED = 3  # local minima of the check refined by the optimizer
 
 
@@ -101,25 +105,100 @@ def check_directions(axes: int, count: int) -> np.ndarray:
     raise ValidationError("axes", "1, 2 or 3 Cartesian axes for a worst normal", axes)
 
 
+def _check_range(k_range: tuple[float, float]) -> tuple[float, float]:
+    lo, hi = float(k_range[0]), float(k_range[1])
+    if not 0 < lo < hi < math.inf:
+        raise ValidationError("k_range", "0 < low < high < inf (N/m)", k_range)
+    return lo, hi
+
+
 def _stiffness_function(device: DeviceLike, damping: float, delay_samples: int, grasp: Grasp,
                         velocity_filter: VelocityFilter | None,
                         k_range: tuple[float, float]) -> Callable[[object], float]:
     """``k_crit(normal)`` of one device and loop (normal as :func:`wall_shape` takes it)."""
     model = structural_model(device)
     b = nonnegative("damping", damping, "N s/m")
-    lo, hi = float(k_range[0]), float(k_range[1])
-    if not 0 < lo < hi:
-        raise ValidationError("k_range", "0 < low < high (N/m)", k_range)
+    lo, hi = _check_range(k_range)
 
     def k_crit(normal: object) -> float:
-        S = wall_shape(model.axes, normal)
+        P0, P1 = wall_pencil(model, wall_shape(model.axes, normal), b, delay_samples, grasp, velocity_filter)
 
         def f(ks: np.ndarray) -> np.ndarray:
-            return wall_radii(model, ks[:, None, None] * S, b * S, delay_samples, grasp, velocity_filter)
+            return spectral_radius(P0 + ks[:, None, None] * P1)
 
         return float(first_crossing(f, lo, hi, increasing=True))
 
     return k_crit
+
+
+def first_crossings(P0: np.ndarray, P1: np.ndarray, k_range: tuple[float, float] = (1.0, 1e9),
+                    rtol: float = CROSSING_RTOL) -> np.ndarray:
+    """The first unstable ``k`` of many pencils ``P0 + k P1`` at once, keeping the stable end.
+
+    The batched form of :func:`analysis.sampled.sweeps.first_crossing` for many walls or
+    devices: the same geometric scan from ``k_range[0]`` (:data:`PER_DECADE` points a decade,
+    a decade per batch, each pencil leaving the scan at its first unstable point), then the
+    bracket of each pencil halved (geometrically) in one batch per step until its relative
+    width is at most ``rtol``.  Bisection rather than Brent's method, because one batched
+    eigenvalue computation per step serves every pencil; the result is, as there, a ``k``
+    found stable, below every ``k`` of its pencil found unstable.
+
+    Parameters
+    ----------
+    P0, P1 : numpy.ndarray
+        Pencils, shapes (W, N, N) (:func:`~analysis.multidof.loop.wall_pencil`).
+    k_range : tuple of (float, float), optional
+        The scanned ``k`` [N/m], ``(low, high)``.
+    rtol : float, optional
+        Relative width of the final brackets.
+
+    Returns
+    -------
+    numpy.ndarray
+        The largest stable ``k`` of each pencil [N/m], shape (W,): ``inf`` when nothing below
+        ``k_range[1]`` is unstable, ``0.0`` when ``k_range[0]`` already is.
+
+    Raises
+    ------
+    ValidationError
+        When the range is not ``0 < low < high < inf``.
+    """
+    lo, hi = _check_range(k_range)
+    W = P0.shape[0]
+    n = max(int(math.ceil(PER_DECADE * math.log10(hi / lo))), 2) + 1
+    grid = np.geomspace(lo, hi, n)
+    out = np.full(W, math.inf)
+    below = np.zeros(W)
+    active = np.arange(W)
+    bracket = np.zeros(W, dtype=bool)
+    for start in range(0, n, PER_DECADE):
+        if active.size == 0:
+            break
+        ks = grid[start:start + PER_DECADE]
+        rho = spectral_radius(P0[active, None] + ks[None, :, None, None] * P1[active, None])
+        bad = ~np.asarray(is_stable(rho))
+        hit = bad.any(axis=1)
+        j = start + np.argmax(bad, axis=1)
+        done = active[hit]
+        out[done] = grid[j[hit]]
+        below[done] = np.where(j[hit] > 0, grid[np.maximum(j[hit] - 1, 0)], 0.0)
+        bracket[done] = j[hit] > 0
+        active = active[~hit]
+    sel = np.flatnonzero(bracket)
+    a, u = below[sel], out[sel]
+    while sel.size:
+        wide = u > a * (1.0 + rtol)
+        if not wide.any():
+            break
+        idx = np.flatnonzero(wide)
+        mid = np.sqrt(a[idx] * u[idx])
+        rho = spectral_radius(P0[sel[idx]] + mid[:, None, None] * P1[sel[idx]])
+        ok = np.asarray(is_stable(rho))
+        a[idx] = np.where(ok, mid, a[idx])
+        u[idx] = np.where(ok, u[idx], mid)
+    out[sel] = a
+    out[~bracket & np.isfinite(out)] = 0.0
+    return out
 
 
 def critical_wall_stiffness(device: DeviceLike, damping: float = 0.0, delay_samples: int = 0, normal: object = None,
@@ -227,9 +306,11 @@ def worst_normal(device: DeviceLike, damping: float = 0.0, delay_samples: int = 
     if m not in DEFAULT_DIRECTIONS:
         raise ValidationError("device", "a device of 1, 2 or 3 Cartesian axes for a worst normal", f"{m} axes")
     count = DEFAULT_DIRECTIONS[m] if directions is None or m == 1 else integer("directions", directions, 4, 100000)
-    k_crit = _stiffness_function(model, damping, delay_samples, grasp, velocity_filter, k_range)
+    b = nonnegative("damping", damping, "N s/m")
+    k_crit = _stiffness_function(model, b, delay_samples, grasp, velocity_filter, k_range)
     dirs = check_directions(m, count)
-    ks = np.array([k_crit(u) for u in dirs])
+    P0, P1 = wall_pencil(model, dirs[:, :, None] * dirs[:, None, :], b, delay_samples, grasp, velocity_filter)
+    ks = first_crossings(P0, P1, k_range)
     best_u, best_k = dirs[int(np.argmin(ks))], float(ks.min())
     evaluations = len(dirs)
     if m > 1:

@@ -49,7 +49,8 @@ from analysis.multidof.model import DeviceLike, StructuralModel, structural_mode
 from analysis.sampled.loop import PLANT_CACHE_BYTES, PLANT_CACHE_SIZE, spectral_radius
 from analysis.sampled.terminations import HANDS_OFF, Grasp
 
-__all__ = ["plant_matrices", "discrete_plant", "wall_shape", "closed_loop_matrices", "wall_radii"]
+__all__ = ["plant_matrices", "discrete_plant", "wall_shape", "loop_parts", "closed_loop_matrices", "wall_pencil",
+           "wall_radii"]
 
 
 def plant_matrices(model: StructuralModel, grasps: Sequence[Grasp] = (HANDS_OFF,)) -> tuple[np.ndarray, np.ndarray]:
@@ -171,6 +172,91 @@ def wall_shape(axes: int, normal: object = None) -> np.ndarray:
                           f"shape {a.shape}")
 
 
+def _check_walls(m: int, stiffness: object, damping: object) -> tuple[np.ndarray, np.ndarray]:
+    """Wall matrices ``K_w``, ``B_w`` as arrays of shape (W, m, m)."""
+    Kw, Bw = np.broadcast_arrays(np.asarray(stiffness, dtype=float), np.asarray(damping, dtype=float))
+    if Kw.ndim == 2:
+        Kw, Bw = Kw[None], Bw[None]
+    if Kw.ndim != 3 or Kw.shape[1:] != (m, m):
+        raise ValidationError("stiffness", f"wall matrices of shape (W, {m}, {m})", f"shape {Kw.shape}")
+    return Kw, Bw
+
+
+def loop_parts(device: DeviceLike, delay_samples: int = 0, grasp: Grasp = HANDS_OFF,
+               velocity_filter: VelocityFilter | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The closed loop without the wall: ``Phi = Phi_0 + G (-(K_w Y + B_w V))`` (module docstring).
+
+    The wall's command ``u = -(K_w y + B_w v)`` is the only part of the loop that depends on the
+    wall; ``y = Y s`` and ``v = V s`` on the closed-loop state ``s``, and ``G`` is where the
+    command enters (through the held plant, or the delay queue).
+
+    Parameters
+    ----------
+    device : StructuralModel, RigidCartesianDevice or Device
+        The device.
+    delay_samples : int, optional
+        Computation delay ``d`` in samples, 0 to 1000.
+    grasp : Grasp, optional
+        The human grasp at the handle (hands-off by default).
+    velocity_filter : VelocityFilter or None, optional
+        The velocity estimate of every axis; ``None`` for the backward difference.
+
+    Returns
+    -------
+    Phi0 : numpy.ndarray
+        The loop with no wall, shape (N, N), ``N = 2n + m (1 + p + d)``.
+    G : numpy.ndarray
+        Where the command enters, shape (N, m).
+    Y : numpy.ndarray
+        The sensed position, shape (m, N).
+    V : numpy.ndarray
+        The velocity estimate, shape (m, N).
+
+    Raises
+    ------
+    ValidationError
+        When the delay is out of range, or the filter is not a VelocityFilter or its cut-off
+        is not below Nyquist.
+    """
+    model = structural_model(device)
+    n2, m = 2 * model.n, model.axes
+    d = integer("delay_samples", delay_samples, 0, 1000)
+    vf = VelocityFilter() if velocity_filter is None else velocity_filter
+    if not isinstance(vf, VelocityFilter):
+        raise ValidationError("velocity_filter", "a VelocityFilter or None", vf)
+    r = vf.realization(model.sample_time)
+    p, T = r.order, model.sample_time
+    Ad, Bd = discrete_plant(model, (grasp,))
+    N = n2 + m * (1 + p + d)
+    iy, isf, iq = n2, n2 + m, n2 + m + p * m  # offsets: last y, filter states, queued commands
+    eye_m = np.eye(m)
+    Y = np.zeros((m, N))
+    Y[:, :model.n] = model.sensing
+    dif = Y.copy()
+    dif[:, iy:iy + m] -= eye_m
+    dif /= T  # the backward difference (y - y[k-1]) / T
+    V = r.D * dif
+    for i in range(p):
+        V[:, isf + i * m:isf + (i + 1) * m] += r.C[i] * eye_m
+    Phi = np.zeros((N, N))
+    Phi[:n2, :n2] = Ad[0]
+    G = np.zeros((N, m))
+    if d:
+        Phi[:n2, iq:iq + m] = Bd[0, :, :m]
+        for j in range(d - 1):
+            Phi[iq + j * m:iq + (j + 1) * m, iq + (j + 1) * m:iq + (j + 2) * m] = eye_m
+        G[iq + (d - 1) * m:, :] = eye_m
+    else:
+        G[:n2, :] = Bd[0, :, :m]
+    Phi[iy:iy + m, :] = Y
+    for i in range(p):
+        row = r.B[i] * dif
+        for j in range(p):
+            row[:, isf + j * m:isf + (j + 1) * m] += r.A[i, j] * eye_m
+        Phi[isf + i * m:isf + (i + 1) * m, :] = row
+    return Phi, G, Y, V
+
+
 def closed_loop_matrices(device: DeviceLike, stiffness: np.ndarray, damping: np.ndarray, delay_samples: int = 0,
                          grasp: Grasp = HANDS_OFF, velocity_filter: VelocityFilter | None = None) -> np.ndarray:
     """Closed-loop state matrices ``Phi`` (W, N, N) for ``W`` walls (module docstring).
@@ -202,51 +288,46 @@ def closed_loop_matrices(device: DeviceLike, stiffness: np.ndarray, damping: np.
         not below Nyquist, or the wall matrices do not match the axes.
     """
     model = structural_model(device)
-    n2, m = 2 * model.n, model.axes
-    d = integer("delay_samples", delay_samples, 0, 1000)
-    Kw = np.asarray(stiffness, dtype=float)
-    Bw = np.asarray(damping, dtype=float)
-    Kw, Bw = np.broadcast_arrays(Kw, Bw)
-    if Kw.ndim == 2:
-        Kw, Bw = Kw[None], Bw[None]
-    if Kw.ndim != 3 or Kw.shape[1:] != (m, m):
-        raise ValidationError("stiffness", f"wall matrices of shape (W, {m}, {m})", f"shape {Kw.shape}")
-    vf = VelocityFilter() if velocity_filter is None else velocity_filter
-    if not isinstance(vf, VelocityFilter):
-        raise ValidationError("velocity_filter", "a VelocityFilter or None", vf)
-    r = vf.realization(model.sample_time)
-    p, T = r.order, model.sample_time
-    Ad, Bd = discrete_plant(model, (grasp,))
-    Ad, Bu = Ad[0], Bd[0, :, :m]
-    W = Kw.shape[0]
-    N = n2 + m * (1 + p + d)
-    iy, isf, iq = n2, n2 + m, n2 + m + p * m  # offsets: last y, filter states, queued commands
-    eye_m = np.eye(m)
-    Y = np.zeros((m, N))
-    Y[:, :model.n] = model.sensing
-    dif = Y.copy()
-    dif[:, iy:iy + m] -= eye_m
-    dif /= T  # the backward difference (y - y[k-1]) / T
-    V = r.D * dif
-    for i in range(p):
-        V[:, isf + i * m:isf + (i + 1) * m] += r.C[i] * eye_m
-    U = -(Kw @ Y + Bw @ V)  # (W, m, N)
-    Phi = np.zeros((W, N, N))
-    Phi[:, :n2, :n2] = Ad
-    if d:
-        Phi[:, :n2, iq:iq + m] = Bu
-        for j in range(d - 1):
-            Phi[:, iq + j * m:iq + (j + 1) * m, iq + (j + 1) * m:iq + (j + 2) * m] = eye_m
-        Phi[:, iq + (d - 1) * m:iq + d * m, :] = U
-    else:
-        Phi[:, :n2, :] += Bu @ U
-    Phi[:, iy:iy + m, :] = Y
-    for i in range(p):
-        row = r.B[i] * dif
-        for j in range(p):
-            row[:, isf + j * m:isf + (j + 1) * m] += r.A[i, j] * eye_m
-        Phi[:, isf + i * m:isf + (i + 1) * m, :] = row
-    return Phi
+    Kw, Bw = _check_walls(model.axes, stiffness, damping)
+    Phi0, G, Y, V = loop_parts(model, delay_samples, grasp, velocity_filter)
+    return Phi0 + G @ -(Kw @ Y + Bw @ V)
+
+
+def wall_pencil(device: DeviceLike, shape: np.ndarray, damping: float, delay_samples: int = 0,
+                grasp: Grasp = HANDS_OFF, velocity_filter: VelocityFilter | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The loop as a pencil in the wall stiffness: ``Phi(k) = P0 + k P1`` for ``K_w = k S``, ``B_w = b S``.
+
+    A sweep over ``k`` then costs one eigenvalue computation per ``k`` and no rebuilding.
+
+    Parameters
+    ----------
+    device : StructuralModel, RigidCartesianDevice or Device
+        The device.
+    shape : array_like
+        Wall shapes ``S`` (:func:`wall_shape`), shape (W, m, m) or (m, m).
+    damping : float
+        Wall damping ``b`` [N s/m].
+    delay_samples : int, optional
+        Computation delay in samples.
+    grasp : Grasp, optional
+        The human grasp at the handle.
+    velocity_filter : VelocityFilter or None, optional
+        The velocity estimate; ``None`` for the backward difference.
+
+    Returns
+    -------
+    P0, P1 : numpy.ndarray
+        Shapes (W, N, N) each.
+
+    Raises
+    ------
+    ValidationError
+        As :func:`closed_loop_matrices`.
+    """
+    model = structural_model(device)
+    S, _ = _check_walls(model.axes, shape, 0.0)
+    Phi0, G, Y, V = loop_parts(model, delay_samples, grasp, velocity_filter)
+    return Phi0 + G @ -(float(damping) * S @ V), G @ -(S @ Y)
 
 
 def wall_radii(device: DeviceLike, stiffness: np.ndarray, damping: np.ndarray, delay_samples: int = 0,
