@@ -32,8 +32,16 @@ from analysis.identify.boxsearch import ParameterBox, SearchTrace, box_search, o
 from analysis.identify.csvio import load_measurement, read_frf, read_timeseries
 from analysis.identify.errors import FitCancelled, MeasurementError, ParameterKeyError
 from analysis.identify.fit import fit_chain, order_selection
+from analysis.identify.goodness import GOODNESS_THRESHOLD, Goodness, goodness_of_fit
 from analysis.identify.hidden import MERGED_SHARE, HiddenHandle, handle_family, hidden_handle, merged_fit
-from analysis.identify.measurement import Measurement, make_measurement
+from analysis.identify.measurement import (
+    COHERENCE_THRESHOLD,
+    POWER_FRACTION,
+    BinSelection,
+    Measurement,
+    informative_bins,
+    make_measurement,
+)
 from analysis.identify.model import (
     BOUNDARIES,
     MEASURED_QUANTITIES,
@@ -59,14 +67,19 @@ from analysis.identify.welch import estimate_frf
 
 __all__ = [
     "BOUNDARIES",
+    "COHERENCE_THRESHOLD",
+    "GOODNESS_THRESHOLD",
     "INTERVAL_MODES",
     "MEASURED_QUANTITIES",
     "MERGED_SHARE",
+    "POWER_FRACTION",
     "QUANTITIES",  # deprecated alias of MEASURED_QUANTITIES (one release)
+    "BinSelection",
     "ChainFit",
     "ChainParameters",
     "FitCancelled",
     "FitProblem",
+    "Goodness",
     "HiddenHandle",
     "Measurement",
     "MeasurementError",
@@ -86,8 +99,10 @@ __all__ = [
     "device_with",
     "estimate_frf",
     "fit_chain",
+    "goodness_of_fit",
     "handle_family",
     "hidden_handle",
+    "informative_bins",
     "load_measurement",
     "make_measurement",
     "merged_fit",

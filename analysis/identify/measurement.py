@@ -193,7 +193,14 @@ class Measurement:
                             - n_low, criteria, source=self.source)
 
     def informative_only(self) -> Measurement:
-        """This measurement restricted to its informative bins (itself when every bin is)."""
+        """This measurement restricted to its informative bins.
+
+        Returns
+        -------
+        Measurement
+            The bins of :attr:`used` with their coherence and input power (``informative``
+            ``None``: all of them are used); itself when every bin is informative.
+        """
         used = self.used
         if used.all():
             return self

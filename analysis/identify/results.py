@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from analysis.chain.device import Device
+from analysis.identify.goodness import Goodness
 from analysis.identify.measurement import BinSelection, Measurement
 
 __all__ = ["ChainFit", "OrderSelection", "Parameter"]
@@ -99,6 +100,10 @@ class ChainFit:
         candidate: ``rss`` is at most this, unless the reported chain is the merged one of an
         undetected handle mode (:mod:`analysis.identify.hidden`); ``nan`` without free
         parameters.
+    goodness:
+        The goodness-of-fit test (:class:`~analysis.identify.goodness.Goodness`: statistic,
+        expected, threshold, passed, message) on the fitted bins; when it fails, the intervals
+        are not trustworthy (:attr:`intervals_trustworthy`) and its message is the first warning.
     """
 
     device: Device
@@ -130,6 +135,14 @@ class ChainFit:
     interval_methods: tuple[str, ...] = ()
     bins: tuple[BinSelection, ...] = ()
     start_rss: float = float("nan")
+    goodness: Goodness | None = None
+
+    @property
+    def intervals_trustworthy(self) -> bool:
+        """Whether the intervals may be reported as 95 % intervals: the model explains the data
+        (:attr:`goodness` passed).  When not, show them labelled "not trustworthy" with
+        ``goodness.message`` (also the first of :attr:`warnings`)."""
+        return self.goodness is None or self.goodness.passed
 
     @property
     def bins_summary(self) -> str:

@@ -27,6 +27,7 @@ from scipy import optimize
 
 from analysis.chain.device import Device
 from analysis.identify.degenerate import SHARES, degenerate_masses, restart
+from analysis.identify.goodness import goodness_of_fit
 from analysis.identify.hidden import HANDLE_KEYS, MERGED_SHARE, HiddenHandle, adopt_best, hidden_handle
 from analysis.identify.measurement import Measurement
 from analysis.identify.params import ChainParameters, parse_key
@@ -351,6 +352,9 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
     floor = max(rss / R, 1e-300)
     aic = R * math.log(floor) + 2 * p
     bic = R * math.log(floor) + p * math.log(R)
+    goodness = goodness_of_fit(problem.measurements, [h[0] for h in problem.responses(theta)], p)
+    if not goodness.passed:
+        warnings.insert(0, goodness.message)
     shown = tuple(problem.measurements if originals is None else originals)
     responses = tuple(h[0] for h in FitProblem(shown, problem.keys, problem.base,
                                                 problem.sensor_element).responses(theta))
@@ -360,4 +364,4 @@ def build_fit(problem: FitProblem, sol: optimize.OptimizeResult | None, keys: Se
                     dof=R - p, responses=responses, measurements=shown, non_identifiable=bad,
                     suggestions=sugg, warnings=tuple(warnings), converged=converged,
                     evaluations=0 if sol is None else int(sol.nfev), starts=n_starts,
-                    interval_methods=tuple(methods), bins=tuple(m.bins for m in shown))
+                    interval_methods=tuple(methods), bins=tuple(m.bins for m in shown), goodness=goodness)
