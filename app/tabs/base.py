@@ -22,7 +22,7 @@ from typing import ClassVar
 import pyqtgraph as pg
 from PySide6.QtCore import QEvent, QObject, QSize, Qt, QTimer, Signal
 from PySide6.QtGui import QResizeEvent, QShowEvent
-from PySide6.QtWidgets import QAbstractScrollArea, QFrame, QLabel, QScrollArea, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QAbstractScrollArea, QFrame, QLabel, QScrollArea, QSizePolicy, QVBoxLayout, QWidget
 
 from app.core.commands import Editor
 from app.core.compute_graph import ComputeGraph
@@ -143,6 +143,10 @@ def fit_wrapped_labels(body: QWidget) -> bool:
         need = max(int(floor), label.heightForWidth(label.width()) if label.text() else 0)
         if label.minimumHeight() != need:
             label.setMinimumHeight(need)
+            changed = True
+        grows = bool(policy.verticalPolicy().value & QSizePolicy.PolicyFlag.ExpandFlag.value)
+        if not grows and label.maximumHeight() != need:  # no blank lines (they would misalign plots' titles)
+            label.setMaximumHeight(need)
             changed = True
     return changed
 
