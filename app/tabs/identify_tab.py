@@ -126,8 +126,8 @@ class IdentifyTab(AnalysisTab):
                    else "No measurements yet: add measurement files, then press Fit.")
         for view, message in self.placeholders.items():
             empty = not view.export_series()
-            view.empty_message = waiting if empty else ""
-            message.set_text(view.empty_message, view.palette_colors()["fg"])
+            # in the plot only (not view.empty_message: an export before a fit is refused with the tab's hint)
+            message.set_text(waiting if empty else "", view.palette_colors()["fg"])
             if self._empty.get(view) != empty:  # (an axis is laid out again when its ticks change)
                 self._empty[view] = empty
                 for name in ("left", "bottom"):
