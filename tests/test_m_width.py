@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 
+import mpmath
 import numpy as np
 import pytest
 from scipy import optimize
@@ -40,6 +41,7 @@ from analysis.sampled import (
 )
 from analysis.sampled.loop import LoopSpec, closed_loop_matrices, is_stable, spectral_radius
 from analysis.sampled.passivity import mass_passivity_term, passivity_limits, required_damping
+from analysis.sampled.renderable import free_motion_radius
 from analysis.sampled.terminations import HANDS_OFF, Termination, god_object_wall
 
 T = 1e-3
@@ -119,16 +121,57 @@ def test_a_zero_mass_with_an_estimate_changes_no_eigenvalue_that_matters():
     assert loop_radius(dev, 0.0, 3.0, 800.0, 1) == pytest.approx(float(spectral_radius(plain)[0]), rel=1e-12)
 
 
+def mp_radius(m: float, b: float, M: float, d: int) -> mpmath.mpf:
+    """Largest root modulus of the hand polynomial at ``B = K = 0`` in 50 digits, with the free
+    motion's ``(z - 1)`` (and for ``b = 0`` the second one) divided out exactly."""
+    with mpmath.workdps(50):
+        m, b, M, h = mpmath.mpf(m), mpmath.mpf(b), mpmath.mpf(M), mpmath.mpf(T)
+        if b > 0:
+            delta = mpmath.exp(-b * h / m)
+            alpha = (h - (m / b) * (1 - delta)) / b
+            beta = ((m / b) * (1 - delta) - h * delta) / b
+            # z^{d+2} (z - delta) + (M/T^2)(z - 1)(alpha z + beta)
+            q = [mpmath.mpf(0)] * (d + 4)
+            q[0], q[1] = mpmath.mpf(1), -delta
+            g = M / h ** 2
+            q[-3] += g * alpha
+            q[-2] += g * (beta - alpha)
+            q[-1] += -g * beta
+        else:  # z^{d+2} + mu (z + 1), mu = M/(2 m)
+            q = [mpmath.mpf(1)] + [mpmath.mpf(0)] * (d + 2)
+            q[-2] += M / (2 * m)
+            q[-1] += M / (2 * m)
+        roots = mpmath.polyroots(q[::-1], maxsteps=200, extraprec=200, asc=True)
+        return max(abs(r) for r in roots)
+
+
 @pytest.mark.parametrize(("d", "upper"), [(0, 2.0), (1, math.sqrt(5.0) - 1.0)])
 def test_m_width_of_the_canonical_undamped_mass_is_the_jury_interval(d, upper):
+    """Jury: -m < M < 2m (d = 0), -m < M < (sqrt(5) - 1) m (d = 1), to 1e-9, never beyond.
+
+    The lower limit is a real root crossing z = 1, where free motion's double root sits: the
+    free translation and velocity are deflated exactly (free_motion_radius), so the crossing is
+    not blurred by the rigid-body clamp, and it is traced against rho = 1 (conservative)."""
     m = 0.5
     w = m_width(rigid(m, 0.0), delay_samples=d)
     assert w.m_max == pytest.approx(upper * m, rel=1e-9)
-    # the lower limit is a real root crossing z = 1, where free motion's double pole sits: the
-    # rigid-body clamp (RIGID_TOL = 1e-6 in |z - 1|) blurs it by about 1e-4 m
-    assert w.m_min == pytest.approx(-m, rel=5e-4)
-    assert w.m_min <= 0.0 <= w.m_max
+    assert w.m_min == pytest.approx(-m, rel=1e-9)
+    # never beyond the exact limits (up to the eigenvalues' round-off, ~1e-15)
+    assert -m * (1.0 + 1e-13) <= w.m_min and w.m_max <= upper * m * (1.0 + 1e-13)
     assert w.width == pytest.approx(w.m_max - w.m_min)
+
+
+@pytest.mark.parametrize("b", [0.0, 2.0, 20.0])
+@pytest.mark.parametrize("d", [0, 1, 2])
+def test_m_width_is_the_50_digit_root_crossing_and_conservative(b, d):
+    """Against the roots of the hand polynomial in 50 digits: every root at the reported limits
+    is inside the unit circle (to 1e-12), and 1e-9 beyond them one is outside."""
+    m = 0.5
+    w = m_width(rigid(m, b), delay_samples=d)
+    for limit in (w.m_min, w.m_max):
+        assert mp_radius(m, b, limit, d) <= 1 + 1e-12
+        assert mp_radius(m, b, limit * (1 + 1e-9), d) > 1
+        assert mp_radius(m, b, 0.999 * limit, d) < 1
 
 
 @pytest.mark.parametrize("d", [0, 1, 2])
@@ -142,7 +185,17 @@ def test_m_width_of_a_damped_mass_matches_the_roots_of_the_hand_polynomial(d):
     assert g(0.5 * w.m_max) < 0 < g(1.01 * w.m_max)
     assert w.m_max == pytest.approx(optimize.brentq(g, 0.5 * w.m_max, 1.01 * w.m_max, xtol=1e-14), rel=1e-8)
     assert g(0.5 * w.m_min) < 0 < g(1.01 * w.m_min)
-    assert w.m_min == pytest.approx(optimize.brentq(g, 1.01 * w.m_min, 0.5 * w.m_min, xtol=1e-14), rel=5e-4)
+    assert w.m_min == pytest.approx(optimize.brentq(g, 1.01 * w.m_min, 0.5 * w.m_min, xtol=1e-14), rel=1e-8)
+
+
+def test_free_motion_is_deflated_exactly_and_nothing_else():
+    """free_motion_radius drops the z = 1 roots of free motion only: a root 1e-9 from z = 1 stays."""
+    P = np.diag([1.0, 1.0 + 1e-9, 0.5])
+    P[0, 1] = 1.0  # a Jordan-like coupling
+    Q, _ = np.linalg.qr(np.random.default_rng(1).normal(size=(3, 3)))
+    assert free_motion_radius((Q @ P @ Q.T)[None])[0] == pytest.approx(1.0 + 1e-9, abs=1e-13)
+    J = np.array([[1.0, 1e-3, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -0.7]])  # free position and velocity
+    assert free_motion_radius((Q @ J @ Q.T)[None])[0] == pytest.approx(0.7, rel=1e-12)
 
 
 def test_delay_narrows_the_m_width_from_above():

@@ -34,6 +34,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy import linalg
 
 from analysis.chain.device import Device
 from analysis.chain.limits import MAX_MAP_POINTS, check_count
@@ -47,7 +48,6 @@ from analysis.sampled.qualities import (
     check_qualities,
     quantization_force_noise,
     passive_k,
-    stable_radius,
 )
 from analysis.sampled.rendered import (
     AccelerationEstimate,
@@ -57,7 +57,13 @@ from analysis.sampled.rendered import (
     check_virtual_mass,
     rendered_force_response,
 )
-from analysis.sampled.loop import is_stable
+from analysis.sampled.loop import (
+    STABILITY_TOLERANCE,
+    LoopSpec,
+    closed_loop_matrices,
+    discrete_plants,
+    is_stable,
+)
 from analysis.sampled.sweeps import first_crossing
 from analysis.sampled.terminations import Termination, god_object_wall
 from analysis.sampled.zwidth import stiffness_limits
@@ -284,14 +290,85 @@ def renderable_space(device: Device, mass, damping, delay_samples: int = 1,
 
 
 # -- the M-width -----------------------------------------------------------------------------
+#: A unit-1 eigenvalue of a balanced ``Phi`` is structural (free motion) when the smallest singular
+#: value of ``Phi - I`` is at most this, relative to ``max(1, ||Phi||_2)``: about 1e-17 for the
+#: free position and the free velocity, and a root ``eps`` away from 1 leaves ~``eps``, so only a
+#: root within ~1e-13 of z = 1 (inside the one stability rule's 1e-12) is taken for one.
+FREE_MOTION_TOL = 1e-13
+#: A loop whose deflated radius at M = 0 is within this of 1 has a marginal (undamped) root.
+_MARGINAL = 1e-9
+
+
+def free_motion_radius(Phi: np.ndarray) -> np.ndarray:
+    """Spectral radius of each closed loop without its exact z = 1 modes of free motion.
+
+    At ``B = K = 0`` the controller sees no position, so the loop keeps the free translation at
+    ``z = 1`` (and, with no damping to ground, the free velocity: a Jordan block there); at the
+    M-width's lower limit of a mass without damping a third, real root crosses the unit circle at
+    ``z = 1`` itself (Jury: ``mu = -1/2`` in ``z^{d+2} + mu (z + 1)``).  The rigid-body clamp of
+    :func:`~analysis.sampled.loop.spectral_radius` (``|z - 1| < RIGID_TOL`` counts as 1) would hide
+    that root within 1e-6 and the clustered roots (split by ``eps^{1/3}``) blur the crossing; here
+    the structural roots are deflated exactly instead: ``Phi`` is balanced
+    (:func:`scipy.linalg.matrix_balance`), and while ``Phi - I`` is singular
+    (:data:`FREE_MOTION_TOL`) its null vector ``v`` (the SVD's last right singular vector, well
+    conditioned for a Jordan block too) is rotated onto ``e_1`` by a Householder reflection ``Q``
+    (``Q Phi Q = [[1, *], [0, Phi_2]]``) and ``Phi_2`` is kept.  The radius of what is left is
+    not clamped.
+
+    Parameters
+    ----------
+    Phi : numpy.ndarray
+        Closed-loop state matrices, shape (B, N, N).
+
+    Returns
+    -------
+    numpy.ndarray
+        Spectral radii without the free-motion roots, shape (B,) (0 when nothing is left).
+    """
+    out = np.zeros(Phi.shape[0])
+    for i, A in enumerate(Phi):
+        A, _ = linalg.matrix_balance(A, permute=False)
+        while A.shape[0]:
+            n = A.shape[0]
+            _, sv, vh = np.linalg.svd(A - np.eye(n))
+            if sv[-1] > FREE_MOTION_TOL * max(1.0, float(sv[0])):
+                break
+            h = vh[-1].copy()
+            h[0] += math.copysign(1.0, h[0])
+            h /= np.linalg.norm(h)
+            A = A - 2.0 * np.outer(h, h @ A)
+            A = (A - 2.0 * np.outer(A @ h, h))[1:, 1:]
+        out[i] = float(np.abs(np.linalg.eigvals(A)).max()) if A.shape[0] else 0.0
+    return out
+
+
+def free_radius(device: Device, ctrl: RenderingController, mass: np.ndarray, grasps: Sequence) -> np.ndarray:
+    """Worst free-motion-deflated radius (:func:`free_motion_radius`) over ``grasps`` of each
+    virtual mass at ``B = K = 0`` against the god-object wall (the loop of ``"stable"``)."""
+    spec = LoopSpec("impedance", (1.0, 1.0), delay_samples=ctrl.delay_samples,
+                    velocity_filter=ctrl.velocity_filter, acceleration=ctrl.acceleration)
+    gs = tuple(grasps)
+    plants = discrete_plants(device, gs)
+    wall, n = god_object_wall(), mass.size
+    terms = [Termination(g, wall) for g in gs for _ in range(n)]
+    z = np.zeros(n * len(gs))
+    Phi = closed_loop_matrices(device, spec, terms, plants, np.repeat(np.arange(len(gs)), n),
+                               {"kc": z, "bc": z, "mv": np.tile(mass, len(gs))})
+    return free_motion_radius(Phi).reshape(len(gs), n).max(axis=0)
+
+
 def _stable_interval(device: Device, ctrl: RenderingController, s: QualitySettings,
                      m_range: tuple[float, float]) -> tuple[float, float]:
-    def rho(values: np.ndarray) -> np.ndarray:
-        z = np.zeros(values.size)
-        return stable_radius(device, ctrl, values, z, z, s.grasps)
-
-    if not is_stable(rho(np.zeros(1))[0]):
+    r0 = float(free_radius(device, ctrl, np.zeros(1), s.grasps)[0])
+    if not is_stable(r0):
         return 0.0, 0.0
+    # no marginal root at M = 0 (an undamped mode): trace rho = 1 itself, so that no reported
+    # limit passes the exact one (the one stability rule's 1e-12 would allow ~1e-12 kg beyond)
+    margin = STABILITY_TOLERANCE if r0 < 1.0 - _MARGINAL else 0.0
+
+    def rho(values: np.ndarray) -> np.ndarray:
+        return free_radius(device, ctrl, values, s.grasps) + margin
+
     hi = first_crossing(rho, m_range[0], m_range[1], True)
     lo = first_crossing(lambda v: rho(-v), m_range[0], m_range[1], True)
     return -lo, hi
@@ -324,7 +401,10 @@ def m_width(device: Device, delay_samples: int = 1, velocity_filter: VelocityFil
 
     For each quality the interval around ``M = 0`` in which every M has it (the first crossing
     each way, by the scan and Brent bracketing of :func:`~analysis.sampled.sweeps.first_crossing`
-    for stability: 24 points per decade of ``|M|`` from ``m_range[0]`` to ``m_range[1]``);
+    for stability: 24 points per decade of ``|M|`` from ``m_range[0]`` to ``m_range[1]``, on the
+    radius without the exact free-motion roots at z = 1 (:func:`free_motion_radius`), traced
+    against ``rho = 1`` itself when the loop at M = 0 has no undamped root, so that no reported
+    limit lies beyond the exact one);
     ``"passive"`` from the Colgate-Schenkel criterion ``b >= M c_M(theta)``
     (:func:`~analysis.sampled.passivity.required_damping` of ``+-A(z) z^{-d}``); ``"accurate"``
     is the stable interval when the pure mass is within the tolerance over the band (its
