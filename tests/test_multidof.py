@@ -13,6 +13,7 @@ from scipy.integrate import solve_ivp
 from analysis import Device
 from analysis.errors import ValidationError
 from analysis.multidof import (
+    FiveBar,
     RigidCartesianDevice,
     StructuralModel,
     chain_model,
@@ -21,9 +22,11 @@ from analysis.multidof import (
     critical_wall_stiffness,
     discrete_plant,
     first_crossings,
+    five_bar_device,
     wall_pencil,
     wall_radii,
     wall_shape,
+    workspace_map,
     worst_normal,
 )
 from analysis.sampled import (
@@ -259,3 +262,68 @@ def test_equal_models_share_one_cached_plant() -> None:
     b = discrete_plant(RigidCartesianDevice(mass=M.copy(), sample_time=T))
     assert a[0] is b[0]
     assert not a[0].flags.writeable
+
+
+# -- the five-bar's workspace ----------------------------------------------------------------------
+def test_five_bar_jacobian_against_finite_differences() -> None:
+    fb = FiveBar(distal_masses=(0.012, 0.024))
+    h = 1e-7
+    for p in ([0.0, 0.2], [0.06, 0.25], [-0.08, 0.15]):
+        p = np.array(p)
+        dq = np.column_stack([(fb.inverse_kinematics(p + h * e) - fb.inverse_kinematics(p - h * e)) / (2 * h)
+                              for e in np.eye(2)])  # dq/dp = J^{-1}
+        assert np.linalg.inv(fb.jacobian(p)) == pytest.approx(dq, rel=1e-6, abs=1e-6)
+
+
+def test_symmetric_five_bar_has_no_cross_axis_coupling_at_its_centre() -> None:
+    fb = FiveBar()  # equal link masses: mirror symmetric
+    dev = five_bar_device(fb, fb.centre(), T)
+    assert abs(dev.mass[0, 1]) <= 1e-14 * dev.mass.max()
+    assert abs(dev.damping[0, 1]) <= 1e-14 * dev.damping.max()
+    kx, ky = (critical_wall_stiffness(dev, 2.0, 1, normal=e) for e in np.eye(2))
+    assert kx != pytest.approx(ky, rel=1e-3)  # the two axes differ ...
+    assert critical_wall_stiffness(dev, 2.0, 1) == pytest.approx(min(kx, ky), rel=SAME_K, abs=0)  # ... uncoupled
+
+
+def test_unreachable_and_singular_positions_are_refused_by_name() -> None:
+    fb = FiveBar()
+    with pytest.raises(ValidationError, match=r"position = \[0\.3, 0\.5\].*reachable"):
+        five_bar_device(fb, (0.3, 0.5))
+    y = 0.2 * math.sqrt(1 - 0.75**2)  # both distal links horizontal and collinear
+    with pytest.raises(ValidationError, match=r"position.*non-singular.*\(x, y\) = \(0, 0\.1322"):
+        five_bar_device(fb, (0.0, y))
+
+
+def test_workspace_map_is_mirror_symmetric_and_bounded_by_its_minimum() -> None:
+    fb = FiveBar()
+    xs, ys = np.linspace(-0.12, 0.12, 5), np.array([0.1, 0.2, 0.3, 0.45])
+    m = workspace_map(fb, x=xs, y=ys, damping=2.0, delay_samples=1, directions=8)
+    assert m.k_max.shape == m.worst_stiffness.shape == (4, 5) and m.worst_normal.shape == (4, 5, 2)
+    assert not m.reachable[-1].any() and np.all(np.isnan(m.k_max[-1]))  # y = 0.45 m is beyond l1 + l2
+    assert m.reachable[:-1].all()
+    ok = m.reachable
+    assert m.k_max[ok] == pytest.approx(m.k_max[:, ::-1][ok], rel=1e-9)
+    assert m.worst_stiffness[ok] == pytest.approx(m.worst_stiffness[:, ::-1][ok], rel=1e-9)
+    assert m.minimum.stiffness <= np.nanmin(m.worst_stiffness)
+    j = list(ys).index(m.minimum.position[1])
+    i = list(xs).index(m.minimum.position[0])
+    assert m.worst_stiffness[j, i] == np.nanmin(m.worst_stiffness)
+    dev = five_bar_device(fb, m.minimum.position, T)
+    k_at = critical_wall_stiffness(dev, 2.0, 1, normal=m.minimum.normal)
+    assert m.minimum.stiffness == pytest.approx(k_at, rel=SAME_K, abs=0)
+    assert k_at <= min(critical_wall_stiffness(dev, 2.0, 1, normal=u) for u in check_directions(2, 90)) * (1 + 1e-9)
+
+
+@pytest.mark.parametrize("position", [(0.0, 0.2), (0.1, 0.15)])
+def test_simulated_growth_at_points_of_the_map_equals_the_spectral_radius(position: tuple) -> None:
+    fb = FiveBar(distal_masses=(0.012, 0.024))
+    m = workspace_map(fb, x=[position[0]], y=[position[1]], damping=2.0, delay_samples=1, directions=6)
+    dev = five_bar_device(fb, position, T)
+    n = m.worst_normal[0, 0]
+    Kw, Bw = 1.5 * m.worst_stiffness[0, 0] * np.outer(n, n), 2.0 * np.outer(n, n)
+    Phi = closed_loop_matrices(dev, Kw, Bw, 1)
+    rho = float(spectral_radius(Phi)[0])
+    mags = np.sort(np.abs(np.linalg.eigvals(Phi[0])))[::-1]
+    assert rho > 1.005 and mags[0] - mags[2] > 0.005
+    growth = simulate_growth(dev.mass, dev.damping, Kw, Bw, 0.0, 1, 800)  # a = 0: the backward difference
+    assert growth == pytest.approx(rho, abs=1e-3)

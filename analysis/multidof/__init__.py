@@ -14,7 +14,12 @@ Cartesian axes at the handle and the wall is rendered in Cartesian space:
   (:mod:`analysis.multidof.loop`);
 * :func:`critical_wall_stiffness` and :func:`worst_normal` -- the largest stable stiffness of a
   wall, and the plane-wall normal with the smallest one, certified against a dense check of
-  directions (:mod:`analysis.multidof.limits`).
+  directions (:mod:`analysis.multidof.limits`);
+* :func:`workspace_map` -- the isotropic and the worst plane-wall critical stiffness over a grid
+  of handle positions of a planar five-bar (:class:`~analysis.transparency.five_bar.FiveBar`,
+  the linkage's one home, re-exported here), and the design bound, the minimum over the
+  workspace with its position (:mod:`analysis.multidof.workspace`); :func:`five_bar_device`
+  linearizes the five-bar at one position and refuses unreachable and singular ones by name.
 
 The plant is discretized by :func:`analysis.chain.discretize.discretize_zoh` and cached by value
 as :func:`analysis.sampled.loop.discrete_plants` is; stability is
@@ -33,8 +38,8 @@ from __future__ import annotations
 
 from analysis.multidof.limits import (
     DEFAULT_DIRECTIONS,
-    WorstNormal,
     PER_DECADE,
+    WorstNormal,
     check_directions,
     critical_wall_stiffness,
     first_crossings,
@@ -57,14 +62,26 @@ from analysis.multidof.model import (
     chain_model,
     structural_model,
 )
+from analysis.multidof.workspace import (
+    SINGULAR_RTOL,
+    WorkspaceMap,
+    WorkspaceMinimum,
+    five_bar_device,
+    workspace_map,
+)
+from analysis.transparency.five_bar import FiveBar
 
 __all__ = [
     "DEFAULT_DIRECTIONS",
     "DeviceLike",
+    "FiveBar",
     "PER_DECADE",
     "RigidCartesianDevice",
+    "SINGULAR_RTOL",
     "SYMMETRY_RTOL",
     "StructuralModel",
+    "WorkspaceMap",
+    "WorkspaceMinimum",
     "WorstNormal",
     "chain_model",
     "check_directions",
@@ -72,11 +89,13 @@ __all__ = [
     "critical_wall_stiffness",
     "discrete_plant",
     "first_crossings",
+    "five_bar_device",
     "loop_parts",
     "plant_matrices",
     "structural_model",
     "wall_pencil",
     "wall_radii",
     "wall_shape",
+    "workspace_map",
     "worst_normal",
 ]

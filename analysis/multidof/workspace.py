@@ -1,0 +1,218 @@
+"""The workspace map of a planar five-bar: the critical wall stiffness over handle positions.
+
+The five-bar's kinematics and mass properties have one home,
+:class:`analysis.transparency.five_bar.FiveBar` (the Jacobian, ``M_x = J^{-T} M J^{-1}`` plus
+the distal links, and ``B_x``, Eom, Suh & Yi eq. 2), used by the two-axis disturbance observer
+and here.  :func:`five_bar_device` linearizes it at a handle position into a
+:class:`~analysis.multidof.model.RigidCartesianDevice`, refusing a position outside the
+workspace or at (or within :data:`SINGULAR_RTOL` of) a singular configuration by name.
+
+:func:`workspace_map` evaluates, at every reachable point of a grid, the critical stiffness of
+the isotropic wall and the worst plane-wall normal of a dense check of directions, all points
+and directions in one batch (:func:`analysis.multidof.limits.first_crossings`); the design
+bound, :attr:`WorkspaceMap.minimum`, is the smallest plane-wall stiffness over the workspace,
+with its position and normal, refined there by :func:`analysis.multidof.limits.worst_normal`
+(and never above the map's own smallest value: the conservative minimum).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from analysis.chain.velocity_filter import VelocityFilter
+from analysis.checks import integer, nonnegative
+from analysis.errors import ValidationError
+from analysis.multidof.limits import check_directions, first_crossings, worst_normal
+from analysis.multidof.loop import loop_parts
+from analysis.multidof.model import RigidCartesianDevice
+from analysis.sampled.terminations import HANDS_OFF, Grasp
+from analysis.transparency.five_bar import FiveBar
+
+__all__ = ["SINGULAR_RTOL", "five_bar_device", "workspace_map", "WorkspaceMap", "WorkspaceMinimum"]
+
+#: A configuration is refused as singular when the Jacobian's smallest singular value is below
+#: this fraction of its largest (the handle loses, or gains an infinitely light, direction).
+SINGULAR_RTOL = 1e-6
+
+
+def five_bar_device(linkage: FiveBar, position: object, sample_time: float = 1e-3) -> RigidCartesianDevice:
+    """The five-bar linearized at a handle position: its Cartesian ``M_x`` and ``B_x``.
+
+    Parameters
+    ----------
+    linkage : FiveBar
+        The linkage and its mass properties.
+    position : array_like
+        Handle position ``(x, y)`` [m], shape (2,).
+    sample_time : float, optional
+        Sample period ``T`` [s].
+
+    Returns
+    -------
+    RigidCartesianDevice
+        ``M_x``, ``B_x`` at the position (:meth:`FiveBar.cartesian_matrices`).
+
+    Raises
+    ------
+    ValidationError
+        When the position is outside the workspace, or at a singular configuration (the
+        Jacobian's singular values differ by more than ``1/SINGULAR_RTOL``); the message
+        names the position.
+    """
+    p = np.asarray(position, dtype=float)
+    if p.shape != (2,) or not np.all(np.isfinite(p)):
+        raise ValidationError("position", "a finite handle position (x, y) in m", position)
+    linkage.inverse_kinematics(p)  # refuses a position outside the workspace, naming it
+    try:
+        s = np.linalg.svd(linkage.jacobian(p), compute_uv=False)
+    except np.linalg.LinAlgError:
+        s = np.array([1.0, 0.0])
+    if not s[-1] > SINGULAR_RTOL * s[0]:
+        raise ValidationError("position", f"a non-singular configuration of the five-bar (at (x, y) = "
+                                          f"({p[0]:.6g}, {p[1]:.6g}) m the Jacobian's singular values are "
+                                          f"{s[0]:.3g} and {s[-1]:.3g} m/rad)", p.tolist())
+    M, B = linkage.cartesian_matrices(p)
+    return RigidCartesianDevice(mass=M, damping=B, sample_time=sample_time)
+
+
+@dataclass(frozen=True)
+class WorkspaceMinimum:
+    """The design bound: the smallest plane-wall critical stiffness over the workspace.
+
+    Parameters
+    ----------
+    stiffness : float
+        The critical stiffness [N/m].
+    position : numpy.ndarray
+        Where, ``(x, y)`` [m], shape (2,).
+    normal : numpy.ndarray
+        The wall's unit normal there, shape (2,).
+    """
+
+    stiffness: float
+    position: np.ndarray
+    normal: np.ndarray
+
+
+@dataclass(frozen=True)
+class WorkspaceMap:
+    """Critical wall stiffnesses over a grid of handle positions (NaN where unreachable).
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        Grid abscissae [m], shape (nx,).
+    y : numpy.ndarray
+        Grid ordinates [m], shape (ny,).
+    reachable : numpy.ndarray
+        Whether each point is reachable and not singular, shape (ny, nx).
+    k_max : numpy.ndarray
+        Critical stiffness of the isotropic wall [N/m], shape (ny, nx).
+    worst_stiffness : numpy.ndarray
+        Critical stiffness of the worst plane wall of the dense check [N/m], shape (ny, nx).
+    worst_normal : numpy.ndarray
+        Its unit normal, shape (ny, nx, 2).
+    minimum : WorkspaceMinimum
+        The design bound over the workspace, refined at its point.
+    directions : int
+        Directions of the dense check at each point.
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    reachable: np.ndarray
+    k_max: np.ndarray
+    worst_stiffness: np.ndarray
+    worst_normal: np.ndarray
+    minimum: WorkspaceMinimum
+    directions: int
+
+
+def _pencils(devices: list[RigidCartesianDevice], shapes: np.ndarray, damping: float, delay_samples: int,
+             grasp: Grasp, velocity_filter: VelocityFilter | None) -> tuple[np.ndarray, np.ndarray]:
+    """Pencils ``P0 + k P1`` of every device with every wall shape, shape (P * S, N, N)."""
+    P0s, P1s = [], []
+    for dev in devices:
+        Phi0, G, Y, V = loop_parts(dev, delay_samples, grasp, velocity_filter)
+        P0s.append(Phi0 + G @ -(damping * shapes @ V))
+        P1s.append(G @ -(shapes @ Y))
+    return np.concatenate(P0s), np.concatenate(P1s)
+
+
+def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, delay_samples: int = 1, *,
+                  sample_time: float = 1e-3, grasp: Grasp = HANDS_OFF, velocity_filter: VelocityFilter | None = None,
+                  directions: int = 12, k_range: tuple[float, float] = (1.0, 1e9)) -> WorkspaceMap:
+    """The isotropic and the worst plane-wall critical stiffness over a grid of handle positions.
+
+    Parameters
+    ----------
+    linkage : FiveBar
+        The linkage.
+    x, y : array_like
+        Grid abscissae and ordinates [m], shapes (nx,) and (ny,).
+    damping : float, optional
+        Wall damping ``b`` [N s/m], at least 0.
+    delay_samples : int, optional
+        Computation delay in samples.
+    sample_time : float, optional
+        Sample period ``T`` [s].
+    grasp : Grasp, optional
+        The human grasp at the handle (hands-off by default).
+    velocity_filter : VelocityFilter or None, optional
+        The velocity estimate; ``None`` for the backward difference.
+    directions : int, optional
+        Directions of the dense check at each point (over the half circle), 2 to 3600.
+    k_range : tuple of (float, float), optional
+        The scanned ``k`` [N/m], ``(low, high)``.
+
+    Returns
+    -------
+    WorkspaceMap
+        The maps and the design bound.
+
+    Raises
+    ------
+    ValidationError
+        When no grid point is reachable, the grid has more than 160000 points, or an argument
+        is out of range.
+    """
+    xs = np.asarray(x, dtype=float).reshape(-1)
+    ys = np.asarray(y, dtype=float).reshape(-1)
+    if xs.size * ys.size > 160_000:
+        raise ValidationError("x, y", "at most 160000 grid points", xs.size * ys.size)
+    b = nonnegative("damping", damping, "N s/m")
+    D = integer("directions", directions, 2, 3600)
+    dirs = check_directions(2, D)
+    shapes = np.concatenate([np.eye(2)[None], dirs[:, :, None] * dirs[:, None, :]])
+    devices, points = [], []
+    for j, yv in enumerate(ys):
+        for i, xv in enumerate(xs):
+            try:
+                devices.append(five_bar_device(linkage, (xv, yv), sample_time))
+            except ValidationError:
+                continue
+            points.append((j, i))
+    if not devices:
+        raise ValidationError("x, y", "a grid with at least one reachable, non-singular position", "none")
+    ks = first_crossings(*_pencils(devices, shapes, b, delay_samples, grasp, velocity_filter), k_range)
+    ks = ks.reshape(len(devices), D + 1)
+    shape = (ys.size, xs.size)
+    reachable = np.zeros(shape, dtype=bool)
+    k_iso, k_worst = np.full(shape, math.nan), np.full(shape, math.nan)
+    normal = np.full(shape + (2,), math.nan)
+    for (j, i), row in zip(points, ks):
+        reachable[j, i] = True
+        k_iso[j, i] = row[0]
+        w = int(np.argmin(row[1:]))
+        k_worst[j, i], normal[j, i] = row[1 + w], dirs[w]
+    j, i = np.unravel_index(int(np.nanargmin(k_worst)), shape)
+    refined = worst_normal(five_bar_device(linkage, (xs[i], ys[j]), sample_time), b, delay_samples, grasp=grasp,
+                           velocity_filter=velocity_filter, k_range=k_range, directions=max(D, 4))
+    best_k, best_n = (refined.stiffness, refined.normal) if refined.stiffness < k_worst[j, i] else \
+        (float(k_worst[j, i]), normal[j, i])
+    minimum = WorkspaceMinimum(stiffness=float(best_k), position=np.array([xs[i], ys[j]]), normal=np.asarray(best_n))
+    return WorkspaceMap(x=xs, y=ys, reachable=reachable, k_max=k_iso, worst_stiffness=k_worst, worst_normal=normal,
+                        minimum=minimum, directions=D)
