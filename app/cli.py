@@ -14,6 +14,9 @@ Usage::
     zwidth identify FILE[:QUANTITY[:BOUNDARY]]... --masses N [--sample-time T] -o PROFILE.json
                                   fit a chain to measurements (app/cli_identify.py; never imports Qt;
                                   more options: zwidth identify --help)
+    zwidth space PROFILE -o FILE.csv [--qualities stable,passive,accurate] [--batch N] [--scheduler ADDRESS]
+                                  the renderable (M, B, K) space, or a batch's robust space, as CSV
+                                  and a plot (app/cli_space.py; more options: zwidth space --help)
 
 Exit codes: 0 success, 1 bad profile (or the GUI cannot start), 2 usage error (among them an
 output file ``-o`` that is one of the command's input files), 130 ``identify`` cancelled by Ctrl-C.
@@ -30,7 +33,7 @@ from pathlib import Path
 
 __all__ = ["main"]
 
-SUBCOMMANDS = ("analyze", "design", "gui", "bench", "export-plot", "report", "identify")
+SUBCOMMANDS = ("analyze", "design", "gui", "bench", "export-plot", "report", "identify", "space")
 
 #: ``--plot`` names of ``export-plot`` -> figure keys of :mod:`app.report.figures`
 PLOTS = {"bound": "bound", "reserve": "reserve", "range": "range", "chart": "chart", "transparency": "tradeoff_j",
@@ -94,6 +97,9 @@ def _parser() -> argparse.ArgumentParser:
     from app.cli_identify import add_identify_parser
 
     add_identify_parser(sub)
+    from app.cli_space import add_space_parser
+
+    add_space_parser(sub)
     gui = sub.add_parser("gui", help="open the GUI (the default)")
     gui.add_argument("profile", metavar="PROFILE", nargs="?", help="profile JSON file (default: HBFD)")
     return parser
@@ -381,6 +387,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             from app.cli_identify import run_identify
 
             return run_identify(args)
+        if args.command == "space":
+            from app.cli_space import run_space
+
+            return run_space(args)
         if args.command == "bench":
             from app.bench import run_bench
 
