@@ -22,13 +22,17 @@ from analysis.sampled import (
     VelocityFilter,
     effective_environment,
     passivity_limits,
+    rendered_force_response,
     renderable_space,
     renders_passively,
     renders_quietly,
     renders_stably,
     zwidth_region,
 )
+from analysis.chain import handle_impedance
 from analysis.sampled.loop import _cached_zoh_plants
+from analysis.sampled.qualities import accuracy_k, accuracy_mass_limits
+from analysis.sampled.rendered import handle_force_response, handle_transmission
 from test_m_width import hand_radius
 
 T = 1e-3
@@ -315,3 +319,116 @@ def test_results_pickle_for_process_pools_and_clusters():
     assert back.controller == s.controller and back.settings == s.settings
     w = m_width(rigid(), 1)
     assert pickle.loads(pickle.dumps(w)).m_max == w.m_max
+
+
+# -- accurate at the handle (issue 24: the rendered impedance at the handle) ---------------------
+def _dynamic_stiffness_ratio(device: Device, w: float) -> complex:
+    """``(x_actuator/x_handle)^2`` of the free chain driven at the handle, by solving the
+    dynamic stiffness matrix ``-w^2 M + j w C + K`` directly (not by the continued fraction)."""
+    m, n = device.masses, device.masses.size
+    D = np.diag(-w * w * m + 1j * w * device.ground_dampings).astype(complex)
+    for i in range(n - 1):
+        z = device.stiffnesses[i] + 1j * w * device.dampings[i]
+        D[i, i] += z
+        D[i + 1, i + 1] += z
+        D[i, i + 1] -= z
+        D[i + 1, i] -= z
+    x = np.linalg.solve(D, np.eye(n)[0])
+    return complex((x[-1] / x[0]) ** 2)
+
+
+def test_a_rigid_device_renders_at_the_handle_what_the_controller_renders():
+    """Handle = actuator: the handle response is the controller's, and the quality and the
+    effective environment are the old ones (at the encoder)."""
+    w = QualitySettings().frequencies()
+    env, ctrl = RenderedEnvironment(0.2, 3.0, 800.0), RenderingController(1)
+    G = rendered_force_response(w, T, ctrl, env)
+    assert np.array_equal(handle_force_response(rigid(), w, ctrl, env), G)
+    eff = effective_environment(rigid(), env, ctrl)
+    assert np.array_equal(eff.stiffness, G.real) and np.array_equal(eff.damping, G.imag / w)
+    alpha, beta = handle_transmission(rigid(), w)
+    assert np.all(alpha == 1.0) and np.all(beta == 0.0)
+
+
+def test_the_handle_transmission_is_the_chain_seen_from_the_handle(hbfd):
+    """alpha = (x_handle/x_actuator)^2 of the free chain (an independent linear solve), and
+    R_0(Z) - R_0(0) = Z/(alpha + beta Z) at a third, complex termination."""
+    w = np.array([0.5, 3.0, 31.4, 300.0])
+    alpha, beta = handle_transmission(hbfd, w)
+    for i, wi in enumerate(w):
+        assert alpha[i] == pytest.approx(1.0 / _dynamic_stiffness_ratio(hbfd, float(wi)), rel=1e-9)
+    Z = np.array([40.0 - 300j, 2e3 + 5j, 1e4 - 1e4j, 0.3 + 50j])
+    delta = handle_impedance(hbfd, 1j * w, termination=Z) - handle_impedance(hbfd, 1j * w)
+    assert delta == pytest.approx(Z / (alpha + beta * Z), rel=1e-9)
+
+
+def test_at_low_frequency_the_handle_feels_the_device_mass_and_the_rendered_through_the_chain(hbfd):
+    """Below the chain's modes the chain is its series spring k_s (1/k_s = sum 1/k_i) and its
+    masses move together: R_0(Z_c) -> Z_c/(1 + j w Z_c/k_s) + j w sum m_i + sum g_i, and the
+    rendered part G_h -> G/(1 + G/k_s) (the next order, m w^2/k_s, is ~1e-4 at 1 rad/s)."""
+    w = np.geomspace(0.1, 1.0, 16)
+    ks = 1.0 / np.sum(1.0 / hbfd.stiffnesses)
+    ctrl = RenderingController(1)
+    for K in (200.0, 2000.0, 20000.0):
+        env = RenderedEnvironment(0.1, 5.0, K)
+        G = rendered_force_response(w, T, ctrl, env)
+        Zc = G / (1j * w)
+        total = handle_impedance(hbfd, 1j * w, termination=Zc)
+        limit = Zc / (1 + 1j * w * Zc / ks) + 1j * w * hbfd.total_mass + hbfd.total_ground_damping
+        assert np.max(np.abs(total / limit - 1)) < 1e-3
+        Gh = handle_force_response(hbfd, w, ctrl, env)
+        assert np.max(np.abs(Gh / (G / (1 + G / ks)) - 1)) < 1e-3
+        # the chain's compliance is what the handle adds: K/k_s of the rendered spring
+        assert abs(Gh[0] / G[0] - 1) == pytest.approx(K / (ks + K), rel=2e-3)
+
+
+def test_the_accurate_spring_at_the_handle_is_the_series_spring_limit(hbfd):
+    """A pure spring at a low band: K/(1 + K/k_s) within eps of K iff K <= eps k_s/(1 - eps)
+    (the hold's phase at 1 rad/s moves it by ~1e-5); a rigid device has no such limit."""
+    ks = 1.0 / np.sum(1.0 / hbfd.stiffnesses)
+    for eps in (0.05, 0.1, 0.3):
+        s = QualitySettings(band=(0.1, 1.0), tolerance=eps)
+        k = accuracy_k(hbfd, RenderingController(1), np.zeros(1), np.zeros(1), s)[0]
+        assert k == pytest.approx(eps * ks / (1 - eps), rel=1e-4)
+    assert accuracy_k(rigid(), RenderingController(1), np.zeros(1), np.zeros(1),
+                      QualitySettings(band=(0.1, 1.0)))[0] == math.inf
+
+
+@pytest.mark.parametrize(("M", "B"), [(0.0, 0.0), (0.1, 5.0), (-0.2, 20.0), (0.3, -1.0)])
+def test_the_accurate_k_is_conservative_and_tight_on_a_dense_check(hbfd, M, B):
+    """Every K of a dense grid up to accuracy_k is within eps at the handle on the band; just
+    above it one frequency is not."""
+    s = QualitySettings(band=(0.5, 10.0), tolerance=0.2, band_points=48)
+    ctrl = RenderingController(1)
+    k = accuracy_k(hbfd, ctrl, np.array([M]), np.array([B]), s)[0]
+    assert 0 < k < 1e9
+    w = s.frequencies()
+
+    def worst(K: float) -> float:
+        env = RenderedEnvironment(M, B, K)
+        return float(np.max(np.abs(handle_force_response(hbfd, w, ctrl, env) - env.target(w)) /
+                            np.abs(env.target(w))))
+
+    assert max(worst(K) for K in np.geomspace(1e-3 * k, k, 300)) <= s.tolerance * (1 + 1e-9)
+    assert worst(1.001 * k) > s.tolerance
+    eff = effective_environment(hbfd, RenderedEnvironment(M, B, 0.999 * k), ctrl, s)
+    assert np.all(eff.error <= s.tolerance)
+
+
+def test_the_accurate_masses_at_the_handle_are_the_first_violations(hbfd):
+    """A pure mass at the actuator is felt through the chain's spring: accurate up to a finite
+    |M| either way (about eps k_s/w2^2), checked by the handle response on either side."""
+    s = QualitySettings(band=(0.5, 5.0), tolerance=0.1)
+    ctrl = RenderingController(1)
+    lo, hi = accuracy_mass_limits(hbfd, ctrl, s)
+    ks = 1.0 / np.sum(1.0 / hbfd.stiffnesses)
+    w = s.frequencies()
+    for limit in (lo, hi):
+        assert 0.5 * 0.1 * ks / 25.0 < abs(limit) < 2.0 * 0.1 * ks / 25.0
+
+        def worst(M: float) -> float:
+            env = RenderedEnvironment(mass=M)
+            return float(np.max(np.abs(handle_force_response(hbfd, w, ctrl, env) / env.target(w) - 1)))
+
+        assert worst(0.999 * limit) <= 0.1 < worst(1.001 * limit)
+    assert accuracy_mass_limits(rigid(), ctrl, s) == (-math.inf, math.inf)

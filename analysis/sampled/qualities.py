@@ -12,13 +12,17 @@ by properties beyond stability.  Qualities (one predicate each, :data:`QUALITIES
   the rigid-body device (total mass, total damping to ground), extended with the mass term
   (:func:`~analysis.sampled.passivity.passivity_limits`, ``virtual_masses``).
 * ``"accurate"`` (:func:`renders_accurately`): stable, and over the band ``[w1, w2]`` the
-  rendered impedance ``G(jw)/(jw)`` (:func:`~analysis.sampled.rendered.rendered_force_response`)
-  is within a relative tolerance ``eps`` of ``M s + B + K/s``:
-  ``|G - (K + j w B - w^2 M)| <= eps |K + j w B - w^2 M|`` on :attr:`QualitySettings.band_points`
-  log-spaced frequencies.  :func:`effective_environment` reports what the user feels: the
-  effective stiffness ``Re G`` and damping ``Im G/w`` of Colonnese, Siu, Abbott & Okamura
-  (IEEE Trans. Haptics 2015), and the ``(M, B, K)`` fitted to ``G`` over the band.  The
-  impedance is the controller's, at the encoder (the handle of a rigid device).
+  rendered impedance *at the handle* ``G_h(jw)/(jw)``
+  (:func:`~analysis.sampled.rendered.handle_force_response`: the chain between the handle and
+  the actuator terminated by the sampled controller's impedance, less the free device's own) is
+  within a relative tolerance ``eps`` of ``M s + B + K/s``:
+  ``|G_h - (K + j w B - w^2 M)| <= eps |K + j w B - w^2 M|`` on
+  :attr:`QualitySettings.band_points` log-spaced frequencies.  :func:`effective_environment`
+  reports what the user feels at the handle: the effective stiffness ``Re G_h`` and damping
+  ``Im G_h/w`` of Colonnese, Siu, Abbott & Okamura (IEEE Trans. Haptics 2015), and the
+  ``(M, B, K)`` fitted to ``G_h`` over the band.  For a rigid device (handle = actuator)
+  ``G_h`` is the controller's ``G``; for a chain its compliance shows, e.g. a spring ``K`` is
+  felt as ``K/(1 + K/k_s)`` below the chain's modes (``1/k_s = sum 1/k_i``).
 * ``"quiet"`` (:func:`renders_quietly`): the force noise of encoder quantization (white, ``q^2/12``)
   through ``B V(z) + M A(z)`` is at most ``F_noise`` (the Z-width tab's criterion of
   :mod:`analysis.sampled.velocity_noise`, with the mass term; the spring's ``K q/sqrt(12)`` is
@@ -47,6 +51,8 @@ from analysis.sampled.rendered import (
     RenderingController,
     check_virtual_damping,
     check_virtual_mass,
+    handle_force_response,
+    handle_transmission,
     rendered_force_response,
 )
 from analysis.sampled.sweeps import radii
@@ -71,6 +77,8 @@ __all__ = [
     "stable_radius",
     "passive_k",
     "accuracy_k",
+    "accuracy_mass_limits",
+    "first_violation",
     "quantization_force_noise",
 ]
 
@@ -186,22 +194,22 @@ class QualitySettings:
 
 @dataclass(frozen=True)
 class EffectiveEnvironment:
-    """What the user feels of a rendered environment (Colonnese, Siu, Abbott & Okamura 2015).
+    """What the user feels at the handle of a rendered environment (Colonnese, Siu, Abbott & Okamura 2015).
 
     Parameters
     ----------
     w : numpy.ndarray
         Frequencies [rad/s], shape (N,).
     stiffness : numpy.ndarray
-        Effective stiffness ``Re G(jw)`` [N/m] (the spring felt, mass included), shape (N,).
+        Effective stiffness ``Re G_h(jw)`` [N/m] (the spring felt, mass included), shape (N,).
     damping : numpy.ndarray
-        Effective damping ``Im G(jw)/w`` [N s/m], shape (N,).
+        Effective damping ``Im G_h(jw)/w`` [N s/m], shape (N,).
     error : numpy.ndarray
-        Relative error ``|G - G_target|/|G_target|``, shape (N,) (NaN where the target is 0).
+        Relative error ``|G_h - G_target|/|G_target|``, shape (N,) (NaN where the target is 0).
     fitted_mass : float
-        ``M`` [kg] of ``Re G ~ K - M w^2`` fitted over the band (least squares).
+        ``M`` [kg] of ``Re G_h ~ K - M w^2`` fitted over the band (least squares).
     fitted_damping : float
-        ``B`` [N s/m]: the mean of ``Im G/w`` over the band.
+        ``B`` [N s/m]: the mean of ``Im G_h/w`` over the band.
     fitted_stiffness : float
         ``K`` [N/m] of the same fit as ``fitted_mass``.
     """
@@ -321,45 +329,132 @@ def renders_passively(device: Device, controller: RenderingController, mass: flo
     return bool(env.stiffness <= k[0] and k[0] > 0)
 
 
-def accuracy_k(T: float, controller: RenderingController, mass: np.ndarray, damping: np.ndarray,
-                settings: QualitySettings) -> np.ndarray:
-    """Per (M, B): the largest K such that every K' in (0, K] is within ``eps`` (inf: no limit).
+def first_violation(c: np.ndarray) -> np.ndarray:
+    """Per row of real coefficients ``c`` (lowest power first, shape (R, D + 1)): the smallest
+    ``x > 0`` where ``q(x) = sum c_i x^i > 0`` (0 when already just above 0, inf when never).
 
-    Per frequency the condition ``|K alpha + beta| <= eps |K + gamma|`` is ``q(K) <= 0`` for a
-    quadratic ``q``; the first K > 0 where ``q`` turns positive is a root (or 0).
+    ``q > 0`` just above 0 when its lowest nonzero coefficient is positive.  Otherwise the
+    answer is a positive real root where ``q`` turns positive: the roots of each degree (exact
+    zeros of the leading coefficients lower it) are the eigenvalues of the companion matrices,
+    in one batch per degree, polished by two Newton steps; a root counts where ``q`` is positive
+    just beyond it (a touching root does not).  A pair within 1e-6 of the real axis (a double
+    root split by round-off) is taken at its real part.
+
+    Parameters
+    ----------
+    c : numpy.ndarray
+        Real coefficients, shape (R, D + 1).
+
+    Returns
+    -------
+    numpy.ndarray
+        The first violation per row, shape (R,).
+    """
+    c = np.asarray(c, dtype=float)
+    R, D1 = c.shape
+    out = np.full(R, np.inf)
+    nz = c != 0.0
+    low = np.argmax(nz, axis=1)
+    out[nz.any(axis=1) & (c[np.arange(R), low] > 0)] = 0.0
+    deg = np.where(nz.any(axis=1), D1 - 1 - np.argmax(nz[:, ::-1], axis=1), 0)
+    for n in range(1, D1):
+        rows = np.flatnonzero((deg == n) & (out > 0))
+        if rows.size == 0:
+            continue
+        cc = c[rows, :n + 1]
+        comp = np.zeros((rows.size, n, n))
+        comp[:, 0, :] = -cc[:, n - 1::-1] / cc[:, n:n + 1]
+        comp[:, np.arange(1, n), np.arange(n - 1)] = 1.0
+        r = np.linalg.eigvals(comp)
+        x = np.where((r.real > 0) & (np.abs(r.imag) <= 1e-6 * np.abs(r)), r.real, np.nan)
+        dc = cc[:, 1:] * np.arange(1, n + 1)
+        for _ in range(2):  # Newton on the real candidates
+            with np.errstate(divide="ignore", invalid="ignore"):
+                step = _horner(cc, x) / _horner(dc, x)
+            x = np.where(np.abs(step) < 1e-3 * x, x - step, x)
+        beyond = _horner(cc, x * (1 + 1e-8))
+        x = np.where((x > 0) & (beyond > 0), x, np.inf)
+        out[rows] = np.minimum(out[rows], np.where(np.isnan(x), np.inf, x).min(axis=1))
+    return out
+
+
+def _horner(c: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """``sum c[r, i] x[r, k]^i`` (rows of coefficients, lowest power first, at points ``x[r, :]``)."""
+    q = np.broadcast_to(c[:, -1:], x.shape).copy()
+    for i in range(c.shape[1] - 2, -1, -1):
+        q = q * x + c[:, i:i + 1]
+    return q
+
+
+def _abs2_coefficients(p: np.ndarray) -> np.ndarray:
+    """``|p(x)|^2`` for real ``x`` of complex polynomials ``p`` (lowest power first, (..., n))."""
+    n = p.shape[-1]
+    out = np.zeros(p.shape[:-1] + (2 * n - 1,))
+    for i in range(n):
+        for j in range(n):
+            out[..., i + j] += np.real(p[..., i] * np.conj(p[..., j]))
+    return out
+
+
+def accuracy_k(device: Device, controller: RenderingController, mass: np.ndarray, damping: np.ndarray,
+               settings: QualitySettings) -> np.ndarray:
+    """Per (M, B): the largest K such that every K' in (0, K] is within ``eps`` at the handle (inf: no limit).
+
+    At each frequency the rendered force per handle position is ``u/(alpha + gamma u)`` with
+    ``u = K P + q`` affine in K (``P`` the hold and delay, ``q = B P V + M P A``) and
+    ``gamma = beta/(jw)`` (:func:`~analysis.sampled.rendered.handle_transmission`), the target
+    ``K + g0``.  Cleared of its denominator the condition is ``Q(K) = |u - (K + g0)(alpha +
+    gamma u)|^2 - eps^2 |K + g0|^2 |alpha + gamma u|^2 <= 0``, a real quartic (a quadratic for a
+    rigid device, ``gamma = 0``); the first K > 0 where it turns positive is
+    :func:`first_violation`'s, the least over the band.
     """
     w = settings.frequencies()
+    T = device.sample_time
     P = rendered_force_response(w, T, controller, RenderedEnvironment(stiffness=1.0))  # hold x delay
     V = controller.velocity_response(w, T)
     A = controller.acceleration_response(w, T)
+    alpha, beta = handle_transmission(device, w)
+    gamma = beta / (1j * w)
     M, B = mass[:, None], damping[:, None]
-    alpha = P - 1.0
-    beta = B * (P * V - 1j * w) + M * (P * A + w * w)
-    gamma = 1j * w * B - w * w * M
-    e2 = settings.tolerance ** 2
-    qa = np.abs(alpha) ** 2 - e2 + 0.0 * M
-    qb = 2.0 * (np.real(alpha * np.conj(beta)) - e2 * np.real(gamma))
-    qc = np.abs(beta) ** 2 - e2 * np.abs(gamma) ** 2
-    disc = np.maximum(qb * qb - 4.0 * qa * qc, 0.0)
-    sq = np.sqrt(disc)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        r_lo = np.where(qa != 0, np.minimum((-qb - sq) / (2 * qa), (-qb + sq) / (2 * qa)), np.nan)
-        r_hi = np.where(qa != 0, np.maximum((-qb - sq) / (2 * qa), (-qb + sq) / (2 * qa)), np.nan)
-        lin = np.where(qb > 0, -qc / qb, np.inf)
-    k = np.where(qa > 0, r_hi, np.where(qa < 0, np.where((qb * qb - 4 * qa * qc > 0) & (r_lo >= 0), r_lo, np.inf),
-                                        lin))
-    bad0 = (qc > 0) | ((qc == 0) & ((qb > 0) | ((qb == 0) & (qa > 0))))
-    k = np.where(bad0, 0.0, np.maximum(k, 0.0))
+    q = B * P * V + M * P * A
+    g0 = 1j * w * B - w * w * M
+    d0, d1 = alpha + gamma * q, gamma * P + 0.0 * M  # alpha + gamma u
+    L = np.stack([q - g0 * d0, P - g0 * d1 - d0, -d1], axis=-1)
+    Rr = np.stack([g0 * d0, g0 * d1 + d0, d1], axis=-1)
+    coeffs = _abs2_coefficients(L) - settings.tolerance ** 2 * _abs2_coefficients(Rr)
+    k = first_violation(coeffs.reshape(-1, 5)).reshape(q.shape)
     return k.min(axis=1)
+
+
+def accuracy_mass_limits(device: Device, controller: RenderingController,
+                         settings: QualitySettings) -> tuple[float, float]:
+    """``(m_lo, m_hi)``: the virtual masses around 0 within ``eps`` at the handle at ``B = K = 0``.
+
+    The pure mass ``u = M P A`` against ``-w^2 M``: ``Q(M) = |P A + w^2 (alpha + gamma M P A)|^2
+    - eps^2 w^4 |alpha + gamma M P A|^2 <= 0`` (divided by ``M^2``), a quadratic in M per
+    frequency; for a rigid device (``gamma = 0``) it does not depend on M (all or none).
+    """
+    w = settings.frequencies()
+    T = device.sample_time
+    a = rendered_force_response(w, T, controller, RenderedEnvironment(mass=1.0))
+    alpha, beta = handle_transmission(device, w)
+    tg = w * w * (beta / (1j * w)) * a
+    out = []
+    for sign in (1.0, -1.0):
+        L = np.stack([a + w * w * alpha, sign * tg], axis=-1)
+        Rr = np.stack([w * w * alpha, sign * tg], axis=-1)
+        c = _abs2_coefficients(L) - settings.tolerance ** 2 * _abs2_coefficients(Rr)
+        out.append(float(first_violation(c).min()))
+    return -out[1], out[0]
 
 
 def renders_accurately(device: Device, controller: RenderingController, mass: float, damping: float,
                        stiffness: float, settings: QualitySettings | None = None) -> bool:
     """Quality ``"accurate"``: stable, and within ``eps`` of ``M s + B + K/s`` over the band.
 
-    The rendered impedance ``G(jw)/(jw)`` of the sampled controller through the hold
-    (:func:`~analysis.sampled.rendered.rendered_force_response`; Colonnese, Siu, Abbott &
-    Okamura, IEEE Trans. Haptics 2015) against the target, relative error at most
+    The rendered impedance at the handle ``G_h(jw)/(jw)`` of the sampled controller through
+    the hold and the chain (:func:`~analysis.sampled.rendered.handle_force_response`;
+    Colonnese, Siu, Abbott & Okamura, IEEE Trans. Haptics 2015) against the target, relative error at most
     ``settings.tolerance`` at every frequency of the band; and :func:`renders_stably`.
 
     Parameters
@@ -461,11 +556,13 @@ def renders_quietly(device: Device, controller: RenderingController, mass: float
 
 def effective_environment(device: Device, environment: RenderedEnvironment, controller: RenderingController,
                           settings: QualitySettings | None = None) -> EffectiveEnvironment:
-    """The effective stiffness, damping and mass the user feels over the band (Colonnese et al. 2015).
+    """The effective stiffness, damping and mass the user feels at the handle over the band
+    (Colonnese et al. 2015).
 
-    ``K_eff(w) = Re G``, ``B_eff(w) = Im G/w`` of the sampled force per position ``G``
-    (:func:`~analysis.sampled.rendered.rendered_force_response`); the fitted ``(M, B, K)`` are
-    the least-squares ``Re G ~ K - M w^2`` and the mean of ``Im G/w`` over the band.
+    ``K_eff(w) = Re G_h``, ``B_eff(w) = Im G_h/w`` of the rendered force per handle position
+    ``G_h`` (:func:`~analysis.sampled.rendered.handle_force_response`: the free device's own
+    mass and damping are not part of it); the fitted ``(M, B, K)`` are
+    the least-squares ``Re G_h ~ K - M w^2`` and the mean of ``Im G_h/w`` over the band.
 
     Parameters
     ----------
@@ -491,7 +588,7 @@ def effective_environment(device: Device, environment: RenderedEnvironment, cont
     s = settings or QualitySettings()
     s.check(device.sample_time, ("accurate",))
     w = s.frequencies()
-    G = rendered_force_response(w, device.sample_time, controller, environment)
+    G = handle_force_response(device, w, controller, environment)
     target = environment.target(w)
     with np.errstate(divide="ignore", invalid="ignore"):
         err = np.where(np.abs(target) > 0, np.abs(G - target) / np.abs(target), np.nan)

@@ -45,17 +45,16 @@ from analysis.sampled.passivity import required_damping
 from analysis.sampled.qualities import (
     QualitySettings,
     accuracy_k,
+    accuracy_mass_limits,
     check_qualities,
     quantization_force_noise,
     passive_k,
 )
 from analysis.sampled.rendered import (
     AccelerationEstimate,
-    RenderedEnvironment,
     RenderingController,
     check_virtual_damping,
     check_virtual_mass,
-    rendered_force_response,
 )
 from analysis.sampled.loop import (
     STABILITY_TOLERANCE,
@@ -273,7 +272,7 @@ def renderable_space(device: Device, mass, damping, delay_samples: int = 1,
         by["passive"] = passive_k(device, ctrl, Mg.ravel(), Bg.ravel(), ceiling).reshape(Mg.shape)
     if "accurate" in names:
         step()
-        acc = accuracy_k(T, ctrl, Mg.ravel(), Bg.ravel(), s).reshape(Mg.shape)
+        acc = accuracy_k(device, ctrl, Mg.ravel(), Bg.ravel(), s).reshape(Mg.shape)
         by["accurate"] = np.minimum(np.minimum(acc, ceiling), stable)
     if "quiet" in names:
         step()
@@ -407,8 +406,9 @@ def m_width(device: Device, delay_samples: int = 1, velocity_filter: VelocityFil
     limit lies beyond the exact one);
     ``"passive"`` from the Colgate-Schenkel criterion ``b >= M c_M(theta)``
     (:func:`~analysis.sampled.passivity.required_damping` of ``+-A(z) z^{-d}``); ``"accurate"``
-    is the stable interval when the pure mass is within the tolerance over the band (its
-    relative error does not depend on M), else ``(0, 0)``; ``"quiet"`` is
+    is the stable interval cut to the masses whose pure mass is within the tolerance at the
+    handle over the band (:func:`~analysis.sampled.qualities.accuracy_mass_limits`; for a rigid
+    device the relative error does not depend on M: all of it or ``(0, 0)``); ``"quiet"`` is
     ``|M| <= F_noise/sigma_a``.  The M-width is their intersection.
 
     Parameters
@@ -454,10 +454,9 @@ def m_width(device: Device, delay_samples: int = 1, velocity_filter: VelocityFil
     if "passive" in names:
         by["passive"] = _passive_interval(device, ctrl)
     if "accurate" in names:
-        w = s.frequencies()
-        P = rendered_force_response(w, T, ctrl, RenderedEnvironment(mass=1.0))
-        err = np.abs(P / (-w * w) - 1.0)
-        by["accurate"] = stable if bool(np.all(err <= s.tolerance)) else (0.0, 0.0)
+        a_lo, a_hi = accuracy_mass_limits(device, ctrl, s)
+        lo_a, hi_a = max(stable[0], a_lo), min(stable[1], a_hi)
+        by["accurate"] = (lo_a, hi_a) if lo_a < hi_a else (0.0, 0.0)
     if "quiet" in names:
         f = float(quantization_force_noise(T, ctrl, np.ones(1), np.zeros(1), s.encoder_resolution)[0])
         by["quiet"] = (-s.force_noise / f, s.force_noise / f)

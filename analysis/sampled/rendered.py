@@ -56,6 +56,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from analysis.chain.continued_fraction import handle_impedance
+from analysis.chain.device import Device
 from analysis.chain.limits import DAMPING, MASS
 from analysis.chain.velocity_filter import BACKWARD, VelocityFilter
 from analysis.checks import Real, SettingsRecord, choice, integer
@@ -72,6 +74,8 @@ __all__ = [
     "InertialImpedanceLoop",
     "inertial_loop",
     "rendered_force_response",
+    "handle_transmission",
+    "handle_force_response",
     "check_virtual_mass",
     "check_virtual_damping",
 ]
@@ -466,6 +470,81 @@ def rendered_force_response(w: Any, sample_time: float, controller: RenderingCon
     ctrl = (environment.stiffness + environment.damping * controller.velocity_response(w, T)
             + environment.mass * controller.acceleration_response(w, T))
     return np.exp(-1j * controller.delay_samples * th) * hold * ctrl
+
+
+def handle_transmission(device: Device, w: Any) -> tuple[np.ndarray, np.ndarray]:
+    """``(alpha, beta)`` per frequency: an impedance ``Z`` at the actuator is ``Z/(alpha + beta Z)`` at the handle.
+
+    The handle impedance of the chain with ``Z`` from the actuator mass to ground is a Moebius
+    function of ``Z`` (the one continued fraction,
+    :func:`~analysis.chain.continued_fraction.handle_impedance`), so what ``Z`` adds at the
+    handle, ``R_0(Z) - R_0(0)``, is ``Z/(alpha + beta Z)``: ``1/alpha`` is the squared velocity
+    ratio actuator/handle of the free chain, ``1/beta = R_0(inf) - R_0(0)`` (the actuator
+    clamped).  Both follow from ``R_0`` at the terminations ``tau`` and ``2 tau``,
+    ``tau = |R_0(0)|`` (real and positive, so never resonant with a passive chain):
+    ``1/Delta(t) = alpha/t + beta``.  A rigid device (one mass: handle = actuator) is
+    ``(1, 0)`` exactly.
+
+    Parameters
+    ----------
+    device : Device
+        The chain.
+    w : array_like
+        Angular frequencies [rad/s], shape (N,), > 0.
+
+    Returns
+    -------
+    alpha : numpy.ndarray
+        Dimensionless, complex, shape (N,).
+    beta : numpy.ndarray
+        [m/(N s)], complex, shape (N,).
+    """
+    w = np.asarray(w, dtype=float).reshape(-1)
+    if device.masses.size == 1:
+        return np.ones(w.size, dtype=complex), np.zeros(w.size, dtype=complex)
+    s = 1j * w
+    r0 = handle_impedance(device, s)
+    tau = np.maximum(np.abs(r0), 1e-300)
+    inv1 = 1.0 / (handle_impedance(device, s, termination=tau) - r0)
+    inv2 = 1.0 / (handle_impedance(device, s, termination=2.0 * tau) - r0)
+    return 2.0 * tau * (inv1 - inv2), 2.0 * inv2 - inv1
+
+
+def handle_force_response(device: Device, w: Any, controller: RenderingController,
+                          environment: RenderedEnvironment) -> np.ndarray:
+    """The rendered force per handle position ``G_h(jw) = jw [R_0(Z_c) - R_0(0)]`` [N/m].
+
+    The controller renders ``Z_c = G/(jw)`` (:func:`rendered_force_response`) at the actuator
+    (the point it reads and drives); the user holds the handle, which sees the chain between
+    them terminated by ``Z_c``.  ``R_0(Z_c)`` is that handle impedance (the one continued
+    fraction), and ``R_0(0)``, the free device's own (its mass and damping, felt with the
+    controller off), is taken away: ``G_h = G/(alpha + beta G/(jw))``
+    (:func:`handle_transmission`), the rendered impedance at the handle of issue 24's
+    *accurate*.  For a rigid device ``G_h = G``; at low frequencies, where the chain is rigid,
+    ``G_h -> G`` and the whole handle impedance ``R_0(Z_c) -> Z_c + sum m_i jw + sum g_i``.
+
+    Parameters
+    ----------
+    device : Device
+        The chain and its sample time.
+    w : array_like
+        Angular frequencies [rad/s], shape (N,), > 0 and below Nyquist ``pi/T``.
+    controller : RenderingController
+        Delay, velocity filter and acceleration estimate.
+    environment : RenderedEnvironment
+        ``(M, B, K)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``G_h`` [N/m], complex, shape (N,).
+    """
+    w = np.asarray(w, dtype=float).reshape(-1)
+    G = rendered_force_response(w, device.sample_time, controller, environment)
+    if device.masses.size == 1:
+        return G
+    alpha, beta = handle_transmission(device, w)
+    return G / (alpha + beta * G / (1j * w))
 
 
 # -- the mass term in the one controller model ------------------------------------------------
