@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from .errors import ProfileError
 from .controller import ControllerSection, parse_controller
+from .renderable import RenderableSection, parse_renderable
 from .files import WriteError, atomic_write, bundled_profiles, read_json, sweep_temporaries, write_atomically
 from .fields import error_at, profile_from_current
 from .io import (
@@ -43,6 +44,8 @@ from .sections import (
 __all__ = [
     "ControllerSection",
     "parse_controller",
+    "RenderableSection",
+    "parse_renderable",
     "DISPLAYS",
     "MIGRATIONS",
     "SCHEMA_VERSION",

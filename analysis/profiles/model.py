@@ -21,6 +21,7 @@ from analysis.checks import Real, choice, string
 from analysis.errors import ValidationError
 from analysis.profiles.controller import ControllerSection
 from analysis.profiles.identification import IdentificationSection, check_against_device
+from analysis.profiles.renderable import RenderableSection
 from analysis.profiles.schema import DISPLAYS, FIELDS_BY_NAME, GAIN_NAMES
 from analysis.profiles.sections import SimulationSection
 from analysis.transparency.settings import ObserverSettings, WallSettings
@@ -93,6 +94,9 @@ class Profile:
     controller:
         Optional section (schema 5): the velocity filter, the Z-width region's B range and a
         trials file (:mod:`analysis.profiles.controller`); ``None`` is the backward difference.
+    renderable:
+        Optional section (schema 6): the rendered environment, its acceleration estimate, the
+        qualities' settings and the renderable space's grid (:mod:`analysis.profiles.renderable`).
     """
 
     name: str
@@ -110,12 +114,13 @@ class Profile:
     simulation: SimulationSection | None = None
     identification: IdentificationSection | None = None
     controller: ControllerSection | None = None
+    renderable: RenderableSection | None = None
 
     def __post_init__(self) -> None:
         for field_name, cls in (("wall", WallSettings), ("observer", ObserverSettings),
                                 ("simulation", SimulationSection),
                                 ("identification", IdentificationSection),
-                                ("controller", ControllerSection)):
+                                ("controller", ControllerSection), ("renderable", RenderableSection)):
             value = getattr(self, field_name)
             if value is not None and not isinstance(value, cls):
                 raise ValidationError(field_name, f"None or {cls.__name__}", value)
@@ -128,6 +133,8 @@ class Profile:
             check_against_device(self.identification, self.device.n)
         if self.controller is not None:  # the filter's cut-off against this device's Nyquist frequency
             self.controller.check(self.device.sample_time)
+        if self.renderable is not None:  # the band and the low-pass against this device's Nyquist frequency
+            self.renderable.check(self.device.sample_time)
         for field_name, spec in SCALAR_FIELDS.items():
             object.__setattr__(self, field_name, spec.rule(field_name, getattr(self, field_name)))
         if self.simulation is not None:  # the work the saved scenario asks for, before any allocation

@@ -16,7 +16,11 @@ above it, so nothing maps names to paths by hand:
   the sections are dropped by :func:`drop_per_mass` when a profile takes a chain of another order
   (the device ``zwidth identify`` fits: :func:`analysis.study.identify.profile_with_fit`).
 
-The optional sections (``wall``, ``observer``, ``simulation``, ``identification``,
+The optional ``renderable`` section (schema 6, issue 24: the rendered environment and the
+qualities' settings) is declared key by key here, each number with its rule, and read by these
+declarations (:mod:`analysis.profiles.renderable`); its record validates with the same rules.
+
+The other optional sections (``wall``, ``observer``, ``simulation``, ``identification``,
 ``controller``) are validated by their own records (:mod:`analysis.profiles.sections`,
 :mod:`~analysis.profiles.identification`, :mod:`~analysis.profiles.controller`), whose field
 names are their JSON keys; the tree declares only what the profile checks across them (the
@@ -35,6 +39,7 @@ from typing import Any
 
 from analysis.chain.limits import (
     BAND_MIN,
+    DAMPING,
     DAMPING_RATIO,
     GROUND_DAMPING,
     LIMITS,
@@ -44,6 +49,9 @@ from analysis.chain.limits import (
     Limit,
 )
 from analysis.checks import Real
+from analysis.sampled.qualities import QUALITIES
+from analysis.sampled.rendered import ACCELERATION_KINDS, LOWPASS_KINDS
+from analysis.sampled.velocity_noise import ENCODER_RESOLUTION, FORCE_NOISE
 
 __all__ = [
     "PER_ELEMENT",
@@ -58,6 +66,9 @@ __all__ = [
     "DISPLAYS",
     "walk",
     "path_of",
+    "GRASP_SETS",
+    "RENDERABLE",
+    "MAX_GRID_POINTS",
 ]
 
 #: ``Field.length``: one value per mass (``n``) or per element (``n - 1``).
@@ -69,7 +80,7 @@ DISPLAYS = ("impedance", "admittance")
 #: The API names of the couplings' and PD loop's gains (:class:`Profile` fields), in file order.
 GAIN_NAMES = ("kc", "bc", "mc", "bc_adm", "kp", "kd")
 
-_KINDS = ("object", "section", "number", "numbers", "integer", "string", "choice")
+_KINDS = ("object", "section", "number", "numbers", "integer", "string", "choice", "choices")
 
 
 @dataclass(frozen=True)
@@ -83,7 +94,8 @@ class Field:
     kind : str
         ``object`` (its ``children`` are the only keys allowed), ``section`` (validated by its
         settings record; ``children`` declare only the keys the profile checks across sections),
-        ``number``, ``numbers`` (a list), ``integer``, ``string`` or ``choice`` (one of ``options``).
+        ``number``, ``numbers`` (a list), ``integer``, ``string``, ``choice`` (one of ``options``) or
+        ``choices`` (a non-empty list of ``options``, each once).
     name : str or None
         The API's name of the value (the ``field`` of a ValidationError raised for it).
     rule : Limit or Real or None
@@ -200,6 +212,8 @@ class Field:
             return "a non-empty string" if self.nonempty else "a string"
         if self.kind == "choice":
             return " or ".join(f'"{o}"' for o in self.options)
+        if self.kind == "choices":
+            return "a non-empty list of " + ", ".join(f'"{o}"' for o in self.options) + ", each at most once"
         return "a JSON object"
 
 
@@ -216,6 +230,55 @@ BAND_RULE = Real(lo=BAND_MIN.lo, report_float=True,
                  allowed=f"> 0 and below Nyquist pi/T, within the physical range [{BAND_MIN.lo:g}, pi/T) "
                          f"({BAND_MIN.unit})",
                  not_real=f"a real number > 0 and below Nyquist pi/T ({BAND_MIN.unit})")
+
+def _pair(key: str, prefix: str, rule: Real, required: bool = False) -> Field:
+    """``{"min": ..., "max": ..., "points": ...}`` of a grid axis, each declared under ``prefix_*``."""
+    return Field(key, "object", required=required, children=(
+        _number("min", f"{prefix}_min", rule, required=False),
+        _number("max", f"{prefix}_max", rule, required=False),
+        Field("points", "integer", name=f"{prefix}_points", rule=_POINTS, required=False)))
+
+
+#: The largest number of values of each axis of the renderable space's grid.
+MAX_GRID_POINTS = 201
+_POINTS = Real(lo=2, hi=MAX_GRID_POINTS, unit="")
+#: The grasp sets of the ``stable`` quality (``$.renderable.qualities.grasps``), by name; the records
+#: themselves are :mod:`analysis.sampled.terminations`' (hands-off, firm, rigid grasp).
+GRASP_SETS = {"hands_off": "hands-off only", "firm": "hands-off and a firm grasp",
+              "all": "hands-off, a firm and a rigid grasp"}
+#: A virtual mass or damping: either sign, within the physical range of masses and dampings.
+_VIRTUAL_MASS = Real(lo=-MASS.hi, hi=MASS.hi, unit="kg", not_real="a real number")
+_VIRTUAL_DAMPING = Real(lo=-DAMPING.hi, hi=DAMPING.hi, unit="N s/m", not_real="a real number")
+
+#: The optional ``renderable`` section (schema 6, issue 24): the rendered environment
+#: ``F = M a^ + B v^ + K x``, its acceleration estimate, the qualities and their settings, and the
+#: (M, B) grid of the renderable space.  Each number's API name is the field of
+#: :class:`analysis.profiles.renderable.RenderableSection` that holds it.
+RENDERABLE = Field("renderable", "section", name="renderable", required=False, children=(
+    Field("environment", "object", required=False, children=(
+        _number("mass", "virtual_mass", _VIRTUAL_MASS, required=False),
+        _number("damping", "virtual_damping", _VIRTUAL_DAMPING, required=False),
+        _number("stiffness", "virtual_stiffness", Real(lo=0.0, hi=STIFFNESS.hi, unit="N/m"), required=False),
+    )),
+    Field("acceleration", "object", required=False, children=(
+        Field("kind", "choice", name="acceleration_kind", options=tuple(ACCELERATION_KINDS), required=False),
+        Field("lowpass", "choice", name="acceleration_lowpass", options=tuple(LOWPASS_KINDS), required=False),
+        _number("cutoff", "acceleration_cutoff", Real(lo=0.0, lo_open=True, allow_inf=True, unit="rad/s"),
+                required=False),
+    )),
+    Field("qualities", "object", required=False, children=(
+        Field("names", "choices", name="qualities", options=tuple(QUALITIES), required=False),
+        Field("grasps", "choice", name="grasps", options=tuple(GRASP_SETS), required=False),
+        Field("band", "object", required=False, children=(
+            _number("min", "band_low", Real(lo=0.0, lo_open=True, unit="rad/s"), required=False),
+            _number("max", "band_high", Real(lo=0.0, lo_open=True, unit="rad/s"), required=False))),
+        _number("tolerance", "tolerance", Real(lo=0.0, lo_open=True, hi=10.0, unit=""), required=False),
+        _number("encoder_resolution", "quiet_resolution", ENCODER_RESOLUTION, required=False),
+        _number("force_noise", "quiet_force_noise", FORCE_NOISE, required=False),
+    )),
+    Field("grid", "object", required=False, children=(
+        _pair("mass", "mass", _VIRTUAL_MASS), _pair("damping", "damping", _VIRTUAL_DAMPING))),
+))
 
 #: The profile file (schema :data:`analysis.profiles.SCHEMA_VERSION`).
 SCHEMA = Field("$", "object", children=(
@@ -254,6 +317,7 @@ SCHEMA = Field("$", "object", children=(
     Field("controller", "section", name="controller", required=False, children=(
         Field("velocity_filter", "section", required=False, children=(Field("cutoff", "number", name="cutoff"),)),
     )),
+    RENDERABLE,
 ))
 
 

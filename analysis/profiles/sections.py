@@ -7,7 +7,10 @@
 * schema 4: ``identification`` (parameter intervals and embedded measurements, parsed by
   :mod:`analysis.profiles.identification`, which :mod:`analysis.profiles.fields` calls);
 * schema 5: ``controller`` (the velocity filter, the Z-width region's B range and a trials
-  file, parsed by :mod:`analysis.profiles.controller`, which :mod:`analysis.profiles.fields` calls).
+  file, parsed by :mod:`analysis.profiles.controller`, which :mod:`analysis.profiles.fields` calls);
+* schema 6: ``renderable`` (the rendered environment ``F = M a^ + B v^ + K x``, the qualities'
+  settings and the renderable space's grid; issue 24), declared key by key in
+  :data:`analysis.profiles.schema.RENDERABLE` and parsed by :mod:`analysis.profiles.renderable`.
 
 Every section is optional; an older file simply has none of them, so the migrations only
 raise the version number.  Errors name the JSON path, e.g. ``$.wall.mass`` or
@@ -28,7 +31,7 @@ from analysis.transparency.settings import ObserverSettings, WallSettings
 
 __all__ = ["SECTION_KEYS", "MIGRATION_STEPS", "SimulationSection", "parse_sections", "sections_to_dict"]
 
-SECTION_KEYS = ("wall", "observer", "simulation", "identification", "controller")
+SECTION_KEYS = ("wall", "observer", "simulation", "identification", "controller", "renderable")
 
 
 @dataclass(frozen=True)
@@ -81,7 +84,14 @@ def _to_5(data: dict) -> dict:
     return data
 
 
-MIGRATION_STEPS = {1: _to_2, 2: _to_3, 3: _to_4, 4: _to_5}
+def _to_6(data: dict) -> dict:
+    """Schema 5 -> 6: adds the optional ``renderable`` section (the rendered environment and the
+    qualities, issue 24) -- nothing to change: without it the app renders no environment beyond the
+    virtual coupling, and the renderable space uses the section's defaults."""
+    return data
+
+
+MIGRATION_STEPS = {1: _to_2, 2: _to_3, 3: _to_4, 4: _to_5, 5: _to_6}
 
 
 #: The names the settings records give themselves in a "not an object" error (see ``from_dict``).
