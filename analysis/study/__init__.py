@@ -17,7 +17,8 @@
 * :mod:`.labels` -- names and units of swept parameters, hold models and plants, for people.
 * :mod:`.requests` -- what each computation depends on: frozen requests built from a profile
   (each computation takes its request, or a profile from which it builds it);
-* :mod:`.citations` -- the full references of the papers whose equation numbers zwidth shows.
+* :mod:`.citations` -- the full references of the papers whose equation numbers zwidth shows;
+* :mod:`.renderable` -- the renderable (M, B, K) space and the M-width of a profile (issue 24).
 """
 
 from __future__ import annotations
@@ -116,6 +117,18 @@ from .zwidth import (
     zwidth_region,
     zwidth_region_result,
 )
+from .renderable import (
+    GRASPS,
+    QUALITY_LABELS,
+    RenderableRequest,
+    RenderableStudy,
+    damping_axis,
+    damping_from_axis,
+    environment_edits,
+    k_max_at,
+    renderable_section,
+    renderable_study,
+)
 from .optimum import OPTIMUM_CUTOFFS, OptimumRequest, filter_optimum, optimum_kind, optimum_verdict
 from .identify import (
     BodeData,
@@ -159,6 +172,8 @@ __all__ = [
     "DeviceRequest", "StabilityRequest", "ChartRequest", "LoopRequest", "MapRequest", "PointRequest",
     "ExactChartRequest", "ExactLimitRequest", "SimulationRequest", "WallRequest", "WallAtRequest",
     "TwoAxisRequest", "TwoAxisStepRequest", "ZWidthRequest", "OptimumRequest", "TrialsRequest", "RobustRequest",
+    "GRASPS", "QUALITY_LABELS", "RenderableRequest", "RenderableStudy", "damping_axis", "damping_from_axis",
+    "environment_edits", "k_max_at", "renderable_section", "renderable_study",
     # deprecated aliases, for one release: analysis.sampled's functions of these names are other things
     "stability_map", "zwidth_region",
 ]
