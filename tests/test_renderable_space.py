@@ -30,8 +30,8 @@ from analysis.sampled import (
     zwidth_region,
 )
 from analysis.chain import handle_impedance
-from analysis.sampled.loop import _cached_zoh_plants
-from analysis.sampled.qualities import accuracy_k, accuracy_mass_limits
+from analysis.sampled.loop import _cached_zoh_plants, is_stable
+from analysis.sampled.qualities import accuracy_k, accuracy_mass_limits, stable_radius
 from analysis.sampled.rendered import handle_force_response, handle_transmission
 from test_m_width import hand_radius
 
@@ -432,3 +432,26 @@ def test_the_accurate_masses_at_the_handle_are_the_first_violations(hbfd):
 
         assert worst(0.999 * limit) <= 0.1 < worst(1.001 * limit)
     assert accuracy_mass_limits(rigid(), ctrl, s) == (-math.inf, math.inf)
+
+
+def test_a_denser_k_check_finds_no_unstable_k_below_k_max(hbfd):
+    """Conservative: 60 points per decade (7x the trace's coarse scan) from 1 N/m up to each k_max,
+    and k_max itself, are all stable; 1e-6 above k_max (where it is a crossing) is not."""
+    M, B = np.array([-0.6, -0.1, 0.15]), np.array([-3.0, 10.0, 80.0])
+    s = renderable_space(hbfd, M, B, 1)
+    ctrl = RenderingController(1)
+    crossings = 0
+    for i, m in enumerate(M):
+        for j, b in enumerate(B):
+            k = float(s.k_max[i, j])
+            if k == 0.0:
+                continue
+            ks = np.r_[np.geomspace(1.0, k, max(int(60 * math.log10(k)), 2)), k]
+            rho = stable_radius(hbfd, ctrl, np.full(ks.size, m), np.full(ks.size, b), ks, (Grasp(),))
+            assert np.all(is_stable(rho)), (m, b, k)
+            if k < 1e9:
+                crossings += 1
+                up = stable_radius(hbfd, ctrl, np.array([m]), np.array([b]), np.array([k * (1 + 1e-6)]),
+                                   (Grasp(),))
+                assert not is_stable(up[0])
+    assert crossings >= 5
