@@ -36,7 +36,7 @@ from analysis.sampled.sweeps import CROSSING_RTOL, first_crossing
 from analysis.sampled.terminations import HANDS_OFF, Grasp
 
 __all__ = ["critical_wall_stiffness", "worst_normal", "WorstNormal", "check_directions", "first_crossings",
-           "DEFAULT_DIRECTIONS", "PER_DECADE"]
+           "narrow_brackets", "DEFAULT_DIRECTIONS", "PER_DECADE"]
 
 #: Directions of the dense check of :func:`worst_normal` by number of axes (2-D: every 2.5 degrees).
 DEFAULT_DIRECTIONS = {1: 1, 2: 72, 3: 256}
@@ -185,20 +185,43 @@ def first_crossings(P0: np.ndarray, P1: np.ndarray, k_range: tuple[float, float]
         bracket[done] = j[hit] > 0
         active = active[~hit]
     sel = np.flatnonzero(bracket)
-    a, u = below[sel], out[sel]
-    while sel.size:
-        wide = u > a * (1.0 + rtol)
-        if not wide.any():
-            break
-        idx = np.flatnonzero(wide)
-        mid = np.sqrt(a[idx] * u[idx])
-        rho = spectral_radius(P0[sel[idx]] + mid[:, None, None] * P1[sel[idx]])
-        ok = np.asarray(is_stable(rho))
-        a[idx] = np.where(ok, mid, a[idx])
-        u[idx] = np.where(ok, u[idx], mid)
-    out[sel] = a
+    out[sel] = narrow_brackets(P0[sel], P1[sel], below[sel], out[sel], rtol)
     out[~bracket & np.isfinite(out)] = 0.0
     return out
+
+
+def narrow_brackets(P0: np.ndarray, P1: np.ndarray, stable: np.ndarray, unstable: np.ndarray,
+                    rtol: float = CROSSING_RTOL) -> np.ndarray:
+    """Shrink brackets ``[stable, unstable]`` of pencils ``P0 + k P1`` by geometric bisection.
+
+    One batched eigenvalue computation per step serves every pencil whose bracket is still
+    wider than ``rtol`` (relative).
+
+    Parameters
+    ----------
+    P0, P1 : numpy.ndarray
+        Pencils, shapes (W, N, N).
+    stable, unstable : numpy.ndarray
+        A stable and an unstable ``k`` of each pencil [N/m], shapes (W,), ``0 < stable < unstable``.
+    rtol : float, optional
+        Relative width of the final brackets.
+
+    Returns
+    -------
+    numpy.ndarray
+        The stable end of each final bracket [N/m], shape (W,): found stable, within ``rtol``
+        (relative) of a ``k`` found unstable.
+    """
+    a, u = np.array(stable, dtype=float), np.array(unstable, dtype=float)
+    while a.size:
+        idx = np.flatnonzero(u > a * (1.0 + rtol))
+        if idx.size == 0:
+            break
+        mid = np.sqrt(a[idx] * u[idx])
+        ok = np.asarray(is_stable(spectral_radius(P0[idx] + mid[:, None, None] * P1[idx])))
+        a[idx] = np.where(ok, mid, a[idx])
+        u[idx] = np.where(ok, u[idx], mid)
+    return a
 
 
 def critical_wall_stiffness(device: DeviceLike, damping: float = 0.0, delay_samples: int = 0, normal: object = None,
