@@ -43,6 +43,7 @@ from analysis.multidof.limits import (
     check_directions,
     critical_wall_stiffness,
     first_crossings,
+    narrow_brackets,
     worst_normal,
 )
 from analysis.multidof.loop import (
@@ -91,6 +92,7 @@ __all__ = [
     "first_crossings",
     "five_bar_device",
     "loop_parts",
+    "narrow_brackets",
     "plant_matrices",
     "structural_model",
     "wall_pencil",
