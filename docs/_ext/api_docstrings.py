@@ -30,7 +30,7 @@ from typing import Any
 #: The packages whose ``__all__`` is the public API.
 PACKAGES = (
     "analysis", "analysis.chain", "analysis.twoport", "analysis.sampled", "analysis.transparency",
-    "analysis.identify", "analysis.profiles", "analysis.study", "analysis.checks", "analysis.errors",
+    "analysis.identify", "analysis.multidof", "analysis.profiles", "analysis.study", "analysis.checks", "analysis.errors",
     "analysis.resources", "analysis.progress",
 )
 #: numpydoc's checks that we enforce (the style checks, such as the summary's mood, are not).
