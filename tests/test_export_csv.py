@@ -45,8 +45,8 @@ def test_design_chart_current_gains_are_the_profiles_gains(capfd, tmp_path, pres
     notes, header, rows = export_csv(capfd, tmp_path, path, "chart")
     p = load_profile(path)
     x, y = display_kind(p).chart_point(p)
-    bc = column(header, rows, "current gains: b_c (N s/m)")
-    kc = column(header, rows, "current gains: k_c (N/m)")
+    bc = column(header, rows, "current gains: b_c [N·s/m]")
+    kc = column(header, rows, "current gains: k_c [N/m]")
     assert bc.tolist() == [x] and kc.tolist() == [y]  # exactly, not log10
     if preset == "hbfd":
         assert (bc[0], kc[0]) == (100.0, 50000.0)
@@ -57,8 +57,8 @@ def test_range_csv_keeps_the_off_scale_points(capfd, tmp_path):
     notes, header, rows = export_csv(capfd, tmp_path, PROFILES / "hbfd.json", "range")
     p = load_profile(PROFILES / "hbfd.json")
     res = display_kind(p).evaluate(p)
-    zmin = column(header, rows, "|Z_min|: |Z_min| (N s/m)")
-    w = column(header, rows, "|Z_min|: omega (rad/s)")
+    zmin = column(header, rows, "|Z_min|: |Z_min| [N·s/m]")
+    w = column(header, rows, "|Z_min|: ω [rad/s]")
     np.testing.assert_allclose(w, res.w, rtol=1e-15)
     np.testing.assert_allclose(zmin, np.abs(res.zmin), rtol=1e-15)
     assert zmin.max() > 1e11  # the rise just below Nyquist that the default view leaves off-scale
@@ -68,6 +68,6 @@ def test_empty_design_chart_export_carries_a_note(capfd, tmp_path):
     notes, header, rows = export_csv(capfd, tmp_path, PROFILES / "eom.json", "chart")
     assert len(notes) == 1 and notes[0].startswith("# note: Nothing is feasible")
     assert "eq. 9" in notes[0] and "b_c from 1 to" in notes[0]
-    assert column(header, rows, "largest k_c: k_c max (N/m)").size == 0
+    assert column(header, rows, "largest k_c: k_c [N/m]").size == 0
     p = load_profile(PROFILES / "eom.json")
-    assert column(header, rows, "current gains: k_c (N/m)").tolist() == [p.kc]
+    assert column(header, rows, "current gains: k_c [N/m]").tolist() == [p.kc]

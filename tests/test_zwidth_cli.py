@@ -30,7 +30,7 @@ def profile_file(tmp_path_factory):
 
 
 def _csv(path: Path) -> tuple[list[str], list[list[float]]]:
-    rows = [r for r in csv.reader(path.read_text().splitlines()) if r and not r[0].startswith("#")]
+    rows = [r for r in csv.reader(path.read_text(encoding="utf-8").splitlines()) if r and not r[0].startswith("#")]
     return rows[0], [[float(x) if x else math.nan for x in r] for r in rows[1:]]
 
 
@@ -39,7 +39,7 @@ def test_export_region_csv_has_the_region_in_the_header_units(capfd, profile_fil
     proc = run_cli(capfd, "export-plot", str(profile_file), "--plot", "zwidth-region", "-o", str(out))
     assert proc.returncode == 0, proc.stderr
     header, rows = _csv(out)
-    assert header[0].endswith(": B (N s/m)") and header[1].endswith(": K (N/m)")
+    assert header[0].endswith(": B [N·s/m]") and header[1].endswith(": K [N/m]")
     assert header[0].startswith("exact largest stable K") and "first-order low-pass at 60 Hz" in header[0]
     assert any(h.startswith("two-port limit K (eq. 9)") for h in header)
     p = load_profile(profile_file)
@@ -47,7 +47,7 @@ def test_export_region_csv_has_the_region_in_the_header_units(capfd, profile_fil
     data = np.array([row[:2] for row in rows[:12]])
     np.testing.assert_allclose(data[:, 0], r.b, rtol=1e-12)
     np.testing.assert_allclose(data[:, 1], r.k_max, rtol=1e-12)
-    text = out.read_text()
+    text = out.read_text(encoding="utf-8")
     wrong = score_trials(r, load_trials(p.controller.trials)).wrong_count
     assert f"{wrong} of 4 predicted wrong" in text
 
@@ -57,7 +57,7 @@ def test_export_filter_optimum_csv(capfd, profile_file, tmp_path):
     proc = run_cli(capfd, "export-plot", str(profile_file), "--plot", "filter-optimum", "-o", str(out))
     assert proc.returncode == 0, proc.stderr
     header, rows = _csv(out)
-    assert header[0].endswith(": cut-off (Hz)") and header[1].endswith(": area (N^2 s/m^2)")
+    assert header[0].endswith(": cut-off f_c [Hz]") and header[1].endswith(": area ∫K dB [N²·s/m²]")
     o = study.filter_optimum(load_profile(profile_file))
     got = np.array([row[:2] for row in rows if not math.isnan(row[0])][:o.cutoffs.size])
     np.testing.assert_allclose(got[:, 0], o.cutoffs / (2 * math.pi), rtol=1e-12)

@@ -42,7 +42,7 @@ class CurvesPlot(PlotView):
             item = self.curve(name, color, width, style)
             item.setData(xs, ys)
         plain = re.sub(r"<sub>(.*?)</sub>", r"_\1", name)  # a legend's F<sub>d</sub> is F_d in the export
-        self._series.append(Series(plain, f"{self.x_name} ({self.x_unit})", f"{self.y_name} ({self.y_unit})", xs, ys))
+        self._series.append(Series(plain, *self.export_axes(), xs, ys))
 
     def hline(self, y: float, label: str) -> None:
         pos = math.log10(y) if self.is_log()[1] else y

@@ -141,13 +141,13 @@ class TransparencyTab(HeldPlots, AnalysisTab):
 
         self.peak_plot = CurvesPlot("‖L‖<sub>∞</sub>(B<sub>c</sub>), eq. 16–17 (Fig. 8)", bc_axis,
                                     ("‖L‖<sub>∞</sub>", "dB"))
-        self.peak_plot.add_curve("peak", "‖L‖<sub>∞</sub>", "a", export_name="||L||inf")
+        self.peak_plot.add_curve("peak", "‖L‖<sub>∞</sub>", "a", export_name="‖L‖∞")
         self.peak_plot.add_curve("peak_invalid", "‖L‖<sub>∞</sub> where J = ∞ (not a valid bound)", "muted", 1.2,
-                                 Qt.PenStyle.DotLine, export_name="||L||inf where J = inf")
+                                 Qt.PenStyle.DotLine, export_name="‖L‖∞ where J = ∞")
         self.peak_plot.add_regions("inf")
         self.peak_plot.add_marker("current", "current B<sub>c</sub>", "b", "o",
-                                  export_name="||L||inf at current B_c")
-        self.peak_plot.add_marker("optimum", "robust optimum", "c", "star", 14, export_name="||L||inf at optimum")
+                                  export_name="‖L‖∞ at current B_c")
+        self.peak_plot.add_marker("optimum", "robust optimum", "c", "star", 14, export_name="‖L‖∞ at optimum")
         self.peak_plot.add_line("zero", False, "0 dB: robust limit", "mark", Qt.PenStyle.DashLine)
         self.peak_plot.add_line("bc", True)
         self.peak_plot.set_line("zero", 0.0)

@@ -6,6 +6,7 @@ import html
 import math
 import re
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import pyqtgraph as pg
@@ -13,22 +14,40 @@ from PySide6.QtCore import QPointF, QRectF, Qt, Signal, Slot
 from PySide6.QtGui import QAction, QColor, QFont, QPainter
 from PySide6.QtWidgets import QGraphicsItem, QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
+from analysis.study.displays import DisplayKind
 from analysis.study.quantities import format_number
 
 from app.widgets.colors import CURSOR_COLORS, PALETTE, WARNING_COLORS
 from app.views.legend_row import LegendRow
 from app.views.render import render_view
 
-__all__ = ["PlotView", "Series", "clean_xy", "fmt", "PALETTE", "mark_design_point", "rich_label"]
+__all__ = ["PlotView", "Series", "Axis", "chart_axes", "clean_xy", "fmt", "PALETTE", "mark_design_point", "rich_label"]
+
+
+class Axis(NamedTuple):
+    """A plotted quantity and its unit, kept apart: the CSV header writes ``quantity [unit]``.
+
+    The spelling is the plot's own (``ω``, ``ρ``, ``‖L‖∞``, ``k_c``; ``N·s/m``, ``N²·s/m²``,
+    ``m/(N·s)``); ``""`` or ``"–"`` is a dimensionless unit (written ``-``)."""
+
+    quantity: str
+    unit: str
+
+
+def chart_axes(kind: DisplayKind) -> tuple[Axis, Axis]:
+    """The design chart's axes of a display: its two gains (``b_c [N·s/m]``, ``k_c [N/m]`` or
+    ``m_c [kg]``, ``b_c [N·s/m]``)."""
+    return Axis(kind.chart_x.symbol, kind.chart_x.unit), Axis(kind.chart_y.symbol, kind.chart_y.unit)
 
 
 @dataclass(frozen=True)
 class Series:
-    """One plotted curve as exported to CSV: names with units, and the data as drawn."""
+    """One plotted curve as exported to CSV: its name (the legend's words), the x and y quantities
+    with their units, and the data as drawn."""
 
     name: str
-    x_label: str
-    y_label: str
+    x_label: Axis
+    y_label: Axis
     x: np.ndarray
     y: np.ndarray
 
@@ -211,6 +230,10 @@ class PlotView(QWidget):
             return  # relabelling re-lays out the plot: only when it changed
         self.x_name, self.x_unit, self.y_name, self.y_unit = x_name, x_unit, y_name, y_unit
         self._label_axes()
+
+    def export_axes(self) -> tuple[Axis, Axis]:
+        """The x and y axes' quantities and units, as the plot labels them (for :class:`Series`)."""
+        return Axis(self.x_name, self.x_unit), Axis(self.y_name, self.y_unit)
 
     def _label_axes(self) -> None:
         """The axis titles in the theme's text colour (pyqtgraph's setLabel forgets the text pen's),

@@ -17,7 +17,7 @@ import pyqtgraph as pg
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QGraphicsItem, QGraphicsTextItem, QSizePolicy, QWidget
 
-from app.views.base import PlotView, Series, clean_xy
+from app.views.base import Axis, PlotView, Series, clean_xy
 from app.views.marker import design_marker, move_marker
 
 __all__ = ["CurvesPlot"]
@@ -228,7 +228,7 @@ class CurvesPlot(PlotView):
                     label.setColor(c)
 
     def export_series(self) -> list[Series]:
-        xl, yl = _plain(f"{self.x_name} ({self.x_unit})"), _plain(f"{self.y_name} ({self.y_unit})")
+        xl, yl = (Axis(_plain(a.quantity), a.unit) for a in self.export_axes())
         return [Series(self._export_names[k], xl, yl, x, y) for k, (x, y) in self._data.items() if x.size]
 
 

@@ -14,7 +14,7 @@ from PySide6.QtWidgets import QWidget
 from analysis import MassChart, StiffnessChart
 from analysis.study import IMPEDANCE, ChartResult, DisplayKind, display_kind
 from app.views.pickable import PickablePlotView
-from app.views.base import Series, clean_xy, mark_design_point, plain
+from app.views.base import Series, chart_axes, clean_xy, mark_design_point, plain
 from app.views.floor_fill import FloorFill
 from app.views.legend_row import swatch
 from app.views.placement import CenterMessage, LegendPlacer
@@ -98,7 +98,7 @@ class DesignChart(PickablePlotView):
         self.upper.setData(x, y)
         self.floor_fill.set_enabled(True)
         self.legend.getLabel(self.upper).setText("largest k<sub>c</sub> (eq. 9)")
-        self._series = [Series("largest k_c", "b_c (N s/m)", "k_c max (N/m)", x, y)]
+        self._series = [Series("largest k_c", *self.export_axes(), x, y)]
         self._set_empty("" if x.size else
                         f"Nothing is feasible: no k_c ≥ 0 satisfies eq. 9 at any b_c from "
                         f"{plain(float(np.min(ch.bc)))} to {plain(float(np.max(ch.bc)))} N·s/m. "
@@ -123,8 +123,8 @@ class DesignChart(PickablePlotView):
         self.upper.setData(x, high[ok])
         self.lower.setData(x, low[ok])
         self.legend.getLabel(self.upper).setText("b<sub>c</sub> edges (eq. 21)")
-        self._series = [Series("b_c low", "m_c (kg)", "b_c low (N s/m)", x, low[ok]),
-                        Series("b_c high", "m_c (kg)", "b_c high (N s/m)", x, high[ok])]
+        self._series = [Series("b_c low", *self.export_axes(), x, low[ok]),
+                        Series("b_c high", *self.export_axes(), x, high[ok])]
         self._set_empty("" if x.size else
                         f"Nothing is feasible: no b_c satisfies eq. 21 at any m_c from "
                         f"{plain(float(np.min(ch.mc)))} to {plain(float(np.max(ch.mc)))} kg.", ch.mc)
@@ -184,7 +184,6 @@ class DesignChart(PickablePlotView):
     def export_series(self) -> list[Series]:
         rows = list(self._series)
         if self._point_xy is not None:  # the gains themselves, not the log10 the plot draws
-            xl, yl = self.kind.chart_x.axis_label(), self.kind.chart_y.axis_label()
-            rows.append(Series("current gains", xl, yl, np.array([self._point_xy[0]]),
+            rows.append(Series("current gains", *chart_axes(self.kind), np.array([self._point_xy[0]]),
                                np.array([self._point_xy[1]])))
         return rows

@@ -17,7 +17,7 @@ from PySide6.QtWidgets import QWidget
 from analysis.sampled import CriticalChart, CriticalMassChart
 
 from analysis.study import IMPEDANCE, ChartResult, DisplayKind, display_kind
-from app.views.base import PlotView, Series, clean_xy, plain
+from app.views.base import PlotView, Series, chart_axes, clean_xy, plain
 from app.views.marker import design_marker, marker_xy, move_marker, set_marker_brush
 from app.views.placement import CenterMessage
 
@@ -80,15 +80,16 @@ class ExactLimitChart(PlotView):
             x, y, _ = clean_xy(ch.bc, kc, True, True)
             self.bound.setData(x, y)
             self.bound_low.setData([], [])
-            self._bound_series = [Series("two-port largest k_c", "b_c (N s/m)", "k_c (N/m)", x, y)]
+            self._bound_series = [Series("two-port largest k_c", *chart_axes(display_kind(res)), x, y)]
         else:
             ch = res.chart
             xl, yl, _ = clean_xy(ch.mc, ch.low, True, True)
             xh, yh, _ = clean_xy(ch.mc, ch.high, True, True)
             self.bound.setData(xh, yh)
             self.bound_low.setData(xl, yl)
-            self._bound_series = [Series("two-port b_c high", "m_c (kg)", "b_c (N s/m)", xh, yh),
-                                  Series("two-port b_c low", "m_c (kg)", "b_c (N s/m)", xl, yl)]
+            axes = chart_axes(display_kind(res))
+            self._bound_series = [Series("two-port b_c high", *axes, xh, yh),
+                                  Series("two-port b_c low", *axes, xl, yl)]
         self._notes["bound"] = notes
         self._update_empty()
         self._refresh_warning()
@@ -111,8 +112,8 @@ class ExactLimitChart(PlotView):
                 notes.append("exact: no instability up to 10⁹ N/m at some b_c (not drawn)")
             x, y, _ = clean_xy(bc, kc, True, True)
             self.exact.setData(x, y)
-            self._exact_series = [Series(f"exact largest k_c (delay {chart.delay_samples})", "b_c (N s/m)",
-                                         "k_c (N/m)", x, y)]
+            self._exact_series = [Series(f"exact largest k_c (delay {chart.delay_samples})", *chart_axes(self.kind),
+                                         x, y)]
         else:
             mc = np.asarray(chart.mc, float)
             bc = np.asarray(chart.bc, float)
@@ -123,8 +124,8 @@ class ExactLimitChart(PlotView):
                 notes.append("exact: every m_c ≥ 1 g stable at some b_c (not drawn)")
             x, y, _ = clean_xy(mc, bc, True, True)
             self.exact.setData(x, y)
-            self._exact_series = [Series(f"exact smallest m_c (delay {chart.delay_samples})", "m_c (kg)",
-                                         "b_c (N s/m)", x, y)]
+            self._exact_series = [Series(f"exact smallest m_c (delay {chart.delay_samples})", *chart_axes(self.kind),
+                                         x, y)]
         self.legend.getLabel(self.bound).setText(self.kind.chart_note)
         self._notes["exact"] = notes
         self._update_empty()
@@ -163,7 +164,6 @@ class ExactLimitChart(PlotView):
     def export_series(self) -> list[Series]:
         rows = [*self._bound_series, *self._exact_series]
         if self._point_xy is not None:  # the gains themselves, not the log10 the plot draws
-            xl, yl = self.kind.chart_x.axis_label(), self.kind.chart_y.axis_label()
-            rows.append(Series("current gains", xl, yl, np.array([self._point_xy[0]]),
+            rows.append(Series("current gains", *chart_axes(self.kind), np.array([self._point_xy[0]]),
                                np.array([self._point_xy[1]])))
         return rows

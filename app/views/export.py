@@ -3,27 +3,33 @@
 PNG and SVG render the plot's scene with QPainter, so the output size is what was asked for,
 independent of the screen's device pixel ratio (HiDPI-correct), through the one export renderer
 :func:`app.views.render.render_view` (the plot as on screen, scaled as one picture).  The CSV has one x and one y
-column per curve (named with units), padded with empty cells where curves differ in length;
-every number in the unit its header names (never the log10 a log axis draws), and nothing the
-view leaves off-scale is dropped.  A view's notes (an empty result) come first as ``# note:`` lines.
+column per curve, each headed ``curve: quantity [unit]`` (:data:`HEADER_PATTERN`; the plot's own
+spelling: ``ω [rad/s]``, ``b_c [N·s/m]``, ``‖L‖∞ [-]``, ``-`` for a dimensionless number); every
+number in the unit its header names (never the log10 a log axis draws), and nothing the view
+leaves off-scale is dropped.  An empty field means "not defined here": a curve shorter than
+another, or a NaN of the data (no filter has no cut-off, no K is stable at that B); ``inf`` and
+``-inf`` are written as such (``float()`` reads them).  A view's notes (an empty result) come
+first as ``# note:`` lines.
 """
 
 from __future__ import annotations
 
 import csv
 import io
+import math
 import os
+import re
 
 from PySide6.QtCore import QByteArray, QBuffer, QIODevice, QRectF, QSize
 from PySide6.QtGui import QColor, QImage, QPainter, QPicture
 
 from analysis.profiles import WriteError, atomic_write
 
-from app.views.base import PlotView
+from app.views.base import Axis, PlotView
 from app.views.render import render_view, settle_layout
 
 __all__ = ["export_png", "export_svg", "svg_bytes", "export_csv", "csv_text", "render_view", "settle_layout",
-           "ExportError", "FORMATS"]
+           "ExportError", "FORMATS", "HEADER_PATTERN", "DIMENSIONLESS", "column_header", "csv_field"]
 
 FORMATS = {"png": "PNG image (*.png)", "svg": "SVG drawing (*.svg)", "csv": "CSV data (*.csv)"}
 
@@ -114,8 +120,30 @@ def svg_bytes(view: PlotView, title: str, background: str, description: str = ""
     return bytes(buf.data())
 
 
+#: the unit a CSV header gives a dimensionless quantity (a plot's axis says "–" or nothing)
+DIMENSIONLESS = "-"
+_DIMENSIONLESS_UNITS = ("", "–", "-")
+#: every CSV column header: ``curve: quantity [unit]`` (the curve's name may hold ": ", the
+#: quantity and the unit hold no brackets)
+HEADER_PATTERN = re.compile(r"^(?P<curve>.+): (?P<quantity>[^\[\]]+) \[(?P<unit>[^\[\]]+)\]$")
+
+
+def column_header(curve: str, axis: Axis) -> str:
+    """A CSV column's header: ``"Re(1/Z_c): ω [rad/s]"`` (:data:`HEADER_PATTERN`); the curve's own
+    name is the quantity where the axis names none (a plot of several dimensionless curves)."""
+    unit = DIMENSIONLESS if axis.unit.strip() in _DIMENSIONLESS_UNITS else axis.unit
+    return f"{curve}: {axis.quantity.strip() or curve} [{unit}]"
+
+
+def csv_field(value: float) -> str:
+    """A number as a CSV field: the shortest text that reads back exactly, ``inf``/``-inf``, and an
+    empty field for NaN (not defined here)."""
+    x = float(value)
+    return "" if math.isnan(x) else repr(x)
+
+
 def csv_text(view: PlotView) -> str:
-    """The plotted data as CSV text: a header row with units, then x/y columns per curve."""
+    """The plotted data as CSV text: a header row (:func:`column_header`), then x/y columns per curve."""
     series = view.export_series()
     out = io.StringIO()
     for note in view.export_notes():  # e.g. why a chart is empty: "# note: ..." before the header
@@ -123,14 +151,14 @@ def csv_text(view: PlotView) -> str:
     w = csv.writer(out, lineterminator="\n")
     header: list[str] = []
     for s in series:
-        header += [f"{s.name}: {s.x_label}", f"{s.name}: {s.y_label}"]
+        header += [column_header(s.name, s.x_label), column_header(s.name, s.y_label)]
     w.writerow(header)
     rows = max((len(s.x) for s in series), default=0)
     for i in range(rows):
         row: list[str] = []
         for s in series:
             if i < len(s.x):
-                row += [repr(float(s.x[i])), repr(float(s.y[i]))]
+                row += [csv_field(s.x[i]), csv_field(s.y[i])]
             else:
                 row += ["", ""]
         w.writerow(row)

@@ -24,12 +24,12 @@ from analysis.sampled import FilterOptimum
 from analysis.study import optimum_verdict
 from analysis.study.quantities import superscript_numbers
 
-from app.views.base import PlotView, Series
+from app.views.base import Axis, PlotView, Series
 
 __all__ = ["FilterOptimumView", "CUTOFF_LABEL", "AREA_LABEL"]
 
-#: The export's column names (header units).
-CUTOFF_LABEL, AREA_LABEL = "cut-off (Hz)", "area (N^2 s/m^2)"
+#: The export's x and y: the axes' quantities and units.
+CUTOFF_LABEL, AREA_LABEL = Axis("cut-off f_c", "Hz"), Axis("area ∫K dB", "N²·s/m²")
 _HZ = 1.0 / (2.0 * math.pi)
 
 
@@ -39,7 +39,7 @@ class FilterOptimumView(PlotView):
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__("Z-width area vs filter cut-off", parent)
         self.set_log(True, False)
-        self.set_axis_labels("cut-off f_c", "Hz", "area ∫K dB", "N²·s/m²")
+        self.set_axis_labels(*CUTOFF_LABEL, *AREA_LABEL)
         self.area = self.curve("area", "#1f5fbf", 2.0)
         self.area.setSymbol("o")
         self.area.setSymbolSize(5)
@@ -84,9 +84,10 @@ class FilterOptimumView(PlotView):
             self.best.setData([opt.cutoff * _HZ], [opt.area])
             self.backward.setPos(opt.backward_area)
             self.backward.show()
-            self.set_legend_text(self.area, f"{opt.criterion}, {FILTER_KINDS[opt.kind]}")
+            legend = f"{opt.criterion}, {FILTER_KINDS[opt.kind]}"
+            self.set_legend_text(self.area, legend)
             self.summary = optimum_verdict(opt)
-            self._series = [Series(f"area ({opt.kind}, {opt.measure})", CUTOFF_LABEL, AREA_LABEL, f,
+            self._series = [Series(legend, CUTOFF_LABEL, AREA_LABEL, f,
                                    np.asarray(opt.areas, float)),
                             Series("optimum", CUTOFF_LABEL, AREA_LABEL, np.array([opt.cutoff * _HZ]),
                                    np.array([opt.area])),

@@ -20,7 +20,7 @@ from PySide6.QtWidgets import QGraphicsPathItem, QWidget
 from analysis import StabilityResult
 from analysis.study import display_kind, rich_numbers, superscript_numbers
 
-from app.views.base import PlotView, Series, clean_xy, plain, rich_label
+from app.views.base import Axis, PlotView, Series, clean_xy, plain, rich_label
 
 __all__ = ["RangePlot", "band_segments", "interest_mask", "set_data", "set_text", "TAIL_FRACTION", "TAIL_JUMP", "BMIN_DECADES"]
 
@@ -146,8 +146,9 @@ class RangePlot(PlotView):
         self._update_fill(x1, y1, x2, y2)
         self.set_legend_text(self.zmin_curve, rich_label(label_min))
         self.set_legend_text(self.zmax_curve, rich_label(label_max))
-        self._series = [Series("|Z_min|", "omega (rad/s)", "|Z_min| (N s/m)", x1, y1),
-                        Series("|Z_max|", "omega (rad/s)", "|Z_max| (N s/m)", x2, y2)]
+        omega, z = self.export_axes()  # ω [rad/s], |Z| [N·s/m]
+        self._series = [Series("|Z_min|", omega, Axis("|Z_min|", z.unit), x1, y1),
+                        Series("|Z_max|", omega, Axis("|Z_max|", z.unit), x2, y2)]
         notes = []
         if h1 + h2:
             notes.append(f"{h1 + h2} point(s) not drawn (non-finite or zero)")
@@ -155,7 +156,7 @@ class RangePlot(PlotView):
         if np.isfinite(km) and km > 0:
             xk, yk, _ = clean_xy(w, km / w, True, True)
             self.kmax_curve.setData(xk, yk)
-            self._series.append(Series("k_max/omega", "omega (rad/s)", "k_max/omega (N s/m)", xk, yk))
+            self._series.append(Series("k_max/ω", omega, Axis("k_max/ω", z.unit), xk, yk))
         else:
             self.kmax_curve.setData([], [])
         self.set_legend_text(self.kmax_curve, f"k<sub>max</sub>/ω ({rich_numbers(plain(km))} N/m)")
@@ -166,7 +167,7 @@ class RangePlot(PlotView):
             if not below and np.isfinite(lo):
                 self.default_y = (min(lo, bm), hi)
             set_data(self.bmin_curve, np.array([w[0], w[-1]]), np.array([bm, bm]))
-            self._series.append(Series("b_min", "omega (rad/s)", "b_min (N s/m)",
+            self._series.append(Series("b_min", omega, Axis("b_min", z.unit),
                                        np.array([w[0], w[-1]]), np.array([bm, bm])))
         else:
             self.bmin_curve.setData([], [])

@@ -20,7 +20,7 @@ from PySide6.QtWidgets import QWidget
 from analysis.sampled import StabilityMap
 
 from analysis.study.labels import PARAMETER_LABELS
-from app.views.base import PlotView, Series, plain
+from app.views.base import Axis, PlotView, Series, plain
 from app.views.marker import design_marker, marker_xy, move_marker, set_marker_brush
 
 __all__ = ["StabilityMapView", "PARAMETER_LABELS", "radius_colormap"]
@@ -208,6 +208,6 @@ class StabilityMapView(PlotView):
             return []
         xn, xu = PARAMETER_LABELS.get(m.x_name, (m.x_name, ""))
         yn, yu = PARAMETER_LABELS.get(m.y_name, (m.y_name, ""))
-        return [Series(f"rho at {yn} = {plain(float(yv))} {yu}", f"{xn} ({xu})", "spectral radius",
+        return [Series(f"ρ at {yn} = {plain(float(yv))} {yu}", Axis(xn, xu), Axis("ρ", ""),
                        np.asarray(m.x, float), np.asarray(m.spectral_radius[j], float))
                 for j, yv in enumerate(m.y)]

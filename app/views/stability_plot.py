@@ -26,7 +26,7 @@ from PySide6.QtWidgets import QGraphicsEllipseItem, QGraphicsItem, QWidget
 from analysis import StabilityResult
 from analysis.study import display_kind
 
-from app.views.base import PlotView, Series, clean_xy, plain, rich_label
+from app.views.base import Axis, PlotView, Series, clean_xy, plain, rich_label
 from app.views.legend_row import set_swatch_brush, swatch
 from app.views.placement import LegendPlacer, densify, scene_points
 
@@ -298,6 +298,7 @@ class StabilityPlot(PlotView):
             return []
         res, term, unit, bound = self._shown
         w, r = res.w, bound_ratio(res)
-        return [Series(term, "omega (rad/s)", f"{term} ({unit})", *clean_xy(w, res.coupling_term, True)[:2]),
-                Series(bound, "omega (rad/s)", f"bound ({unit})", *clean_xy(w, res.bound, True)[:2]),
-                Series(f"bound / {term}", "omega (rad/s)", f"bound / {term} (-)", *clean_xy(w, r, True)[:2])]
+        omega = self.export_axes()[0]  # ω [rad/s] in every mode
+        return [Series(term, omega, Axis(term, unit), *clean_xy(w, res.coupling_term, True)[:2]),
+                Series(bound, omega, Axis("bound", unit), *clean_xy(w, res.bound, True)[:2]),
+                Series(f"bound / {term}", omega, Axis(f"bound / {term}", ""), *clean_xy(w, r, True)[:2])]

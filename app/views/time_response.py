@@ -119,7 +119,7 @@ class TimePlot(PlotView):
         return self._raw[name]
 
     def export_series(self) -> list[Series]:
-        return [Series(name, "t (s)", f"{name} ({self.y_unit})", x, y)
+        return [Series(name, *self.export_axes(), x, y)
                 for name, (x, y) in self._raw.items() if len(x)]
 
 

@@ -18,14 +18,14 @@ from analysis.sampled import MeasuredTrials, TrialScore, ZWidthRegion
 from analysis.study.quantities import format_number, superscript_numbers
 
 from app.views.pickable import PickablePlotView
-from app.views.base import Series, clean_xy, mark_design_point
+from app.views.base import Axis, Series, clean_xy, mark_design_point
 from app.views.floor_fill import FloorFill
 from app.views.legend_row import sync_legend
 
 __all__ = ["ZWidthRegionView", "B_LABEL", "K_LABEL"]
 
-#: The export's column names (header units).
-B_LABEL, K_LABEL = "B (N s/m)", "K (N/m)"
+#: The export's x and y: the axes' quantities and units.
+B_LABEL, K_LABEL = Axis("B", "N·s/m"), Axis("K", "N/m")
 
 
 class ZWidthRegionView(PickablePlotView):
@@ -35,7 +35,7 @@ class ZWidthRegionView(PickablePlotView):
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__("Z-width: stable virtual walls (B, K)", parent)
         self.set_log(True, True)
-        self.set_axis_labels("B", "N·s/m", "K", "N/m")
+        self.set_axis_labels(*B_LABEL, *K_LABEL)
         self.floor = self.curve(None, "#2b8a3e", 0.0)
         self.floor.setPen(None)  # only the shading's lower edge: at the axis (every lower K is stable too)
         self.exact = self.curve("exact largest stable K", "#2b8a3e", 2.5)
@@ -168,7 +168,7 @@ class ZWidthRegionView(PickablePlotView):
     def export_notes(self) -> list[str]:
         notes = [*super().export_notes(), *self.errors]
         if self.summary:
-            notes.append(self.summary.replace("²", "^2").replace("·", " "))
+            notes.append(self.summary)
         if self.score is not None and self.trials is not None:
             notes.extend(self.score.describe(self.trials))
         return notes

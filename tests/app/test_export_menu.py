@@ -99,14 +99,14 @@ def test_export_from_a_tab_never_opened_computes_first(win, tmp_path):
     assert win.export_view(tab.chart, "csv", str(path))
     notes, header, rows = read_csv(path)
     chart = win.graph.result("design_chart").chart
-    kc = column(header, rows, "largest k_c: k_c max (N/m)")
+    kc = column(header, rows, "largest k_c: k_c [N/m]")
     expected = np.asarray(chart.kc, float)
     np.testing.assert_allclose(kc, expected[np.isfinite(expected) & (expected > 0)], rtol=1e-15)
     assert kc.size > 10
     p = win.model.profile
     # the current gains in the units the header names (they were written as log10)
-    assert column(header, rows, "current gains: b_c (N s/m)").tolist() == [p.bc]
-    assert column(header, rows, "current gains: k_c (N/m)").tolist() == [p.kc]
+    assert column(header, rows, "current gains: b_c [N·s/m]").tolist() == [p.bc]
+    assert column(header, rows, "current gains: k_c [N/m]").tolist() == [p.kc]
 
 
 def test_exact_limit_chart_export_from_a_tab_never_opened(win, tmp_path):
@@ -115,10 +115,10 @@ def test_exact_limit_chart_export_from_a_tab_never_opened(win, tmp_path):
     assert win.export_view(view, "csv", str(path))
     notes, header, rows = read_csv(path)
     assert any(h.startswith("exact largest k_c") for h in header)
-    assert column(header, rows, [h for h in header if h.startswith("exact largest k_c") and "k_c (N/m)" in h][0]).size
+    assert column(header, rows, [h for h in header if h.startswith("exact largest k_c") and h.endswith("k_c [N/m]")][0]).size
     p = win.model.profile
-    assert column(header, rows, "current gains: b_c (N s/m)").tolist() == [p.bc]
-    assert column(header, rows, "current gains: k_c (N/m)").tolist() == [p.kc]
+    assert column(header, rows, "current gains: b_c [N·s/m]").tolist() == [p.bc]
+    assert column(header, rows, "current gains: k_c [N/m]").tolist() == [p.kc]
 
 
 def test_export_that_cannot_compute_is_refused_clearly(win, tmp_path, monkeypatch):

@@ -54,12 +54,12 @@ def test_csv_export_holds_the_plotted_numbers(win, tmp_path):
     view = win.tab(StabilityTab).stability
     path = tmp_path / "stability.csv"
     assert win.export_view(view, "csv", str(path))
-    rows = list(csv.reader(path.open()))
+    rows = list(csv.reader(path.open(encoding="utf-8", newline="")))
     header, body = rows[0], rows[1:]
     p = win.model.profile
     res = ImpedanceDisplay(p.device).evaluate(p.kc, p.bc)
-    col = header.index("Re(1/Z_c): Re(1/Z_c) (m/(N·s))")  # "curve: y label"; x is the column before
-    assert header[col - 1] == "Re(1/Z_c): omega (rad/s)"
+    col = header.index("Re(1/Z_c): Re(1/Z_c) [m/(N·s)]")  # "curve: quantity [unit]"; x is the column before
+    assert header[col - 1] == "Re(1/Z_c): ω [rad/s]"
     x = np.array([float(r[col - 1]) for r in body if r[col]])
     y = np.array([float(r[col]) for r in body if r[col]])
     np.testing.assert_allclose(x, res.w, rtol=1e-15)
@@ -122,3 +122,31 @@ def test_every_plot_of_the_stability_tab_exports(win, tmp_path, fmt):
         path = tmp_path / f"{view.title.split(':')[0].strip().replace(' ', '_')}.{fmt}"
         assert win.export_view(view, fmt, str(path), width=800)
         assert path.stat().st_size > 200
+
+
+def test_every_plots_csv_export_is_in_the_documented_form(eom_win, tmp_path, monkeypatch):
+    """Issue 22: every tab's plots in one CSV notation (``curve: quantity [unit]``, no NaN), the
+    views only the GUI draws (the transparency, observer and sampled tabs' curves, the exact
+    chart) as well as those the CLI exports too."""
+    from app.tabs.design_tab import DesignTab
+    from app.tabs.observer_tab import ObserverTab
+    from app.tabs.sampled_tab import SampledTab
+    from app.tabs.transparency_tab import TransparencyTab
+    from app.tabs.zwidth_tab import ZWidthTab
+    from csv_form import check_csv, read_csv
+
+    refused: list[str] = []
+    monkeypatch.setattr(QMessageBox, "warning", lambda *a, **k: refused.append(a[2]))
+    kinds: set[str] = set()
+    tabs = (StabilityTab, DesignTab, TransparencyTab, ObserverTab, SampledTab, ZWidthTab)
+    views = [v for cls in tabs for v in eom_win.tab(cls).plot_views()]
+    for i, view in enumerate(views):
+        path = tmp_path / f"{i}.csv"
+        if not eom_win.export_view(view, "csv", str(path)):
+            continue
+        notes, header, rows = read_csv(path)
+        if rows:
+            check_csv(header, rows, notes)
+            kinds.add(type(view).__name__)
+    assert {"CurvesPlot", "ExactLimitChart", "StabilityPlot", "RangePlot", "DesignChart", "StabilityMapView",
+            "TimePlot", "ZWidthRegionView", "FilterOptimumView"} <= kinds, (kinds, refused)
