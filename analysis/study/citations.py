@@ -28,6 +28,8 @@ __all__ = [
     "CHAWDA",
     "COLGATE_BROWN",
     "COLGATE_SCHENKEL",
+    "COLONNESE_CHAN",
+    "COLONNESE_OKAMURA",
     "EOM",
     "HANNAFORD_RYU",
     "MOREYRA_HANNAFORD",
@@ -148,9 +150,24 @@ MOREYRA_HANNAFORD = Reference(
     "Proceedings of the IEEE International Conference on Robotics and Automation (ICRA 1998), "
     "Leuven, Belgium, pp. 369–374",
 )
+COLONNESE_OKAMURA = Reference(
+    "Colonnese & Okamura",
+    "Colonnese, N., & Okamura, A. M.",
+    2012,
+    "M-Width: Stability and Accuracy of Haptic Rendering of Virtual Mass",
+    "Robotics: Science and Systems VIII (RSS 2012), Sydney, Australia",
+)
+COLONNESE_CHAN = Reference(
+    "Colonnese & Chan",
+    "Colonnese, N., & Chan, S.",
+    2016,
+    "Z-Qualities and Renderable Mass-Damping-Stiffness Spaces: Describing the Set of Renderable "
+    "Dynamics of Kinesthetic Haptic Displays",
+    "Proceedings of the IEEE Haptics Symposium (HAPTICS 2016)",
+)
 
 REFERENCES: tuple[Reference, ...] = (ADAMS, EOM, COLGATE_BROWN, COLGATE_SCHENKEL, CHAWDA,
-                                     HANNAFORD_RYU, MOREYRA_HANNAFORD)
+                                     HANNAFORD_RYU, MOREYRA_HANNAFORD, COLONNESE_OKAMURA, COLONNESE_CHAN)
 
 
 def citation_text(primary: Reference, *others: Reference) -> str:

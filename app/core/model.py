@@ -32,11 +32,11 @@ DEVICE_FIELDS: tuple[str, ...] = (
 )
 #: Fields of the profile itself (``Profile.replace`` keywords).
 PROFILE_FIELDS: tuple[str, ...] = ("name", "notes", "display", "kc", "bc", "mc", "bc_adm", "kp", "kd",
-                                   "wall", "observer", "simulation", "identification", "controller")
-#: Optional profile sections (schema 2 to 5); each is replaced as a whole settings object
+                                   "wall", "observer", "simulation", "identification", "controller", "renderable")
+#: Optional profile sections (schema 2 to 6); each is replaced as a whole settings object
 #: (``WallSettings``, ``ObserverSettings``, ``SimulationSection``, ``IdentificationSection``,
-#: ``ControllerSection``) or ``None``.
-SECTION_FIELDS: tuple[str, ...] = ("wall", "observer", "simulation", "identification", "controller")
+#: ``ControllerSection``, ``RenderableSection``) or ``None``.
+SECTION_FIELDS: tuple[str, ...] = ("wall", "observer", "simulation", "identification", "controller", "renderable")
 VECTOR_FIELDS: tuple[str, ...] = ("masses", "stiffnesses", "dampings", "ground_dampings")
 ALL_FIELDS: tuple[str, ...] = DEVICE_FIELDS + PROFILE_FIELDS
 

@@ -11,7 +11,15 @@ from PySide6.QtCore import Qt
 from PySide6.QtGui import QPalette
 
 from analysis.study import citation_text
-from analysis.study.citations import ADAMS, COLGATE_SCHENKEL, EOM, HANNAFORD_RYU, REFERENCES
+from analysis.study.citations import (
+    ADAMS,
+    COLGATE_SCHENKEL,
+    COLONNESE_CHAN,
+    COLONNESE_OKAMURA,
+    EOM,
+    HANNAFORD_RYU,
+    REFERENCES,
+)
 from app.widgets.citation_note import CitationNote
 
 pytestmark = pytest.mark.gui
@@ -25,6 +33,7 @@ EXPECTED = {
     "Transparency (wall)": (EOM, ()),
     "Disturbance observer": (EOM, ()),
     "Identify": (ADAMS, ()),
+    "Renderable space": (COLONNESE_CHAN, (COLONNESE_OKAMURA,)),
 }
 
 
@@ -73,4 +82,4 @@ def test_citation_text_spells_out_each_reference():
     assert both.startswith("Equation numbers refer to Adams, R. J., Moreyra, M. R., & Hannaford, B. (1998).")
     assert " Also cited: Colgate, J. E., & Schenkel, G. G. (1997). Passivity of a Class of Sampled-Data " in both
     assert ADAMS.html().startswith("Adams, R. J., Moreyra, M. R., &amp; Hannaford, B. (1998). <i>Stability")
-    assert len({r.short for r in REFERENCES}) == len(REFERENCES) == 7
+    assert len({r.short for r in REFERENCES}) == len(REFERENCES) == 9

@@ -1,0 +1,130 @@
+"""The Renderable space tab (issue 24): built lazily, computed on show, the M-width's numbers are
+m_width's, a click sets (M, B) in one undo step, progress and cancel on the worker."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pytest
+from PySide6.QtCore import QPoint, QPointF, Qt
+
+from analysis.profiles import RenderableSection
+from analysis.sampled import m_width
+from analysis.study import RenderableRequest, damping_axis, format_number, renderable_study
+from app.core.nodes_renderable import RENDERABLE_NODE
+from app.tabs.renderable_tab import RenderableTab
+
+#: a coarse grid: these tests check the tab, not the resolution
+COARSE = RenderableSection(mass_points=9, damping_points=11, qualities=("stable", "passive"))
+
+
+@pytest.fixture
+def rwin(qtbot, settings, hbfd_profile):
+    from conftest import _main_window
+
+    yield from _main_window(qtbot, settings, hbfd_profile.replace(renderable=COARSE))
+
+
+def _tab(win) -> RenderableTab:
+    return next(t for t in win.analysis_tabs if isinstance(t, RenderableTab))
+
+
+def show(win, qtbot) -> RenderableTab:
+    tab = _tab(win)
+    win.tabs.setCurrentWidget(tab)
+    qtbot.waitUntil(lambda: win.graph.is_fresh(RENDERABLE_NODE) and tab.space_view.study is not None, timeout=60000)
+    return tab
+
+
+def test_the_tab_is_built_and_computed_only_when_shown(rwin, qtbot):
+    tab = _tab(rwin)
+    assert not tab.is_built()
+    assert rwin.graph.calls(RENDERABLE_NODE) == 0  # hidden: nothing computed
+    show(rwin, qtbot)
+    assert tab.is_built() and rwin.graph.calls(RENDERABLE_NODE) == 1
+
+
+def test_the_m_width_shown_is_m_widths(rwin, qtbot):
+    tab = show(rwin, qtbot)
+    p = rwin.model.profile
+    req = RenderableRequest.of(p)
+    w = m_width(p.device, req.delay_samples, req.velocity_filter, req.acceleration, req.qualities,
+                settings=req.settings)
+    study = tab.space_view.study
+    assert (study.width.m_min, study.width.m_max) == (w.m_min, w.m_max)
+    assert w.m_min < 0 < w.m_max
+    text = tab.summary.text()
+    assert f"{format_number(w.m_min)} to {format_number(w.m_max)} kg" in text
+    rows = dict((q, (a, b)) for q, a, b in tab.width_view.rows)
+    assert rows["all"] == (w.m_min, w.m_max) and rows["stable"] == w.by_quality["stable"]
+    np.testing.assert_array_equal(study.space.k_max, renderable_study(req).space.k_max)
+    # the quality selector colours the map by one quality's K_max
+    tab.select_quality("passive")
+    np.testing.assert_array_equal(tab.space_view.shown(), study.space.by_quality["passive"])
+    assert "M-width (passive)" in tab.summary.text()
+
+
+def test_a_click_sets_m_and_b_in_one_undo_step_without_recomputing(rwin, qtbot):
+    tab = show(rwin, qtbot)
+    qtbot.wait(50)
+    view = tab.space_view
+    vb = view.plot.getViewBox()
+    calls = rwin.graph.calls(RENDERABLE_NODE)
+    target = QPointF(0.3, float(damping_axis(20.0)))  # x: M (linear), y: the signed-log damping axis
+    pos = view.plot_widget.mapFromScene(vb.mapViewToScene(target))
+    n = rwin.undo_stack.count()
+    qtbot.mouseClick(view.plot_widget.viewport(), Qt.MouseButton.LeftButton, pos=QPoint(pos))
+    qtbot.waitUntil(lambda: rwin.undo_stack.count() == n + 1, timeout=3000)
+    sec = rwin.model.profile.renderable
+    assert sec.virtual_mass == pytest.approx(0.3, abs=0.02) and sec.virtual_damping == pytest.approx(20.0, rel=0.1)
+    where = (sec.virtual_mass, float(damping_axis(sec.virtual_damping)))
+    qtbot.waitUntil(lambda: view.point.design_xy == pytest.approx(where), timeout=3000)  # the tab follows
+    assert rwin.graph.calls(RENDERABLE_NODE) == calls  # the environment is not in the request
+    rwin.undo_stack.undo()
+    assert rwin.model.profile.renderable == COARSE
+
+
+def test_first_edit_creates_the_section_and_undo_removes_it(win, qtbot):
+    tab = show(win, qtbot)
+    assert win.model.profile.renderable is None
+    assert tab.set_environment(-0.1, 5.0) is None
+    assert win.model.profile.renderable.virtual_mass == -0.1
+    win.undo_stack.undo()
+    assert win.model.profile.renderable is None
+
+
+def test_progress_and_cancel_keep_the_last_result(rwin, qtbot):
+    tab = show(rwin, qtbot)
+    before = tab.space_view.study
+    seen: list[tuple[int, int]] = []
+    rwin.graph.progress.connect(lambda name, d, t: seen.append((d, t)) if name == RENDERABLE_NODE else None)
+    tab.panel.write("mass_points", 15)  # a new grid: the node runs again on the worker
+    widget = tab.progress[RENDERABLE_NODE]
+    qtbot.waitUntil(lambda: widget.running or rwin.graph.is_fresh(RENDERABLE_NODE), timeout=10000)
+    if widget.running:
+        widget.cancel()
+        qtbot.waitUntil(lambda: not widget.running, timeout=60000)
+        assert tab.space_view.study is before  # the last good result stays
+        assert "cancelled" in widget.label.text()
+        widget.rerun.emit(RENDERABLE_NODE)
+    qtbot.waitUntil(lambda: rwin.graph.is_fresh(RENDERABLE_NODE) and tab.space_view.study is not before, timeout=60000)
+    assert tab.space_view.study.space.mass.size == 15
+    assert seen and all(0 <= d <= t for d, t in seen)
+
+
+def test_screenshots_light_and_dark(rwin, qtbot, tmp_path):
+    from conftest import coloured_fraction, distinct_colours
+
+    rwin.resize(1280, 800)
+    tab = show(rwin, qtbot)
+    tab.set_environment(0.2, 10.0)
+    out = os.environ.get("ZWIDTH_SCREENSHOTS") or str(tmp_path)
+    for theme in ("light", "dark"):
+        rwin.theme.set_theme(theme)
+        qtbot.wait(200)
+        image = rwin.grab().toImage()
+        image.save(os.path.join(out, f"renderable_{theme}.png"))
+        assert image.width() == 1280 and image.height() == 800
+        assert distinct_colours(image) > 20 and coloured_fraction(image) > 0.02
+    rwin.theme.set_theme("light")
