@@ -39,9 +39,12 @@ SUBCOMMANDS = ("analyze", "design", "gui", "bench", "export-plot", "report", "id
 PLOTS = {"bound": "bound", "reserve": "reserve", "range": "range", "chart": "chart", "transparency": "tradeoff_j",
          "robustness": "tradeoff_l", "step": "step", "map": "map", "scenario-position": "scenario_position",
          "scenario-force": "scenario_force", "identify": "identify", "identify-phase": "identify_phase",
-         "zwidth-region": "zwidth_region", "filter-optimum": "filter_optimum"}
+         "zwidth-region": "zwidth_region", "filter-optimum": "filter_optimum",
+         "space": "renderable_space", "m-width": "m_width"}
 #: plots computed with the default controller section (backward difference, B 0.1-100) when the profile has none
 DEFAULT_SECTION_PLOTS = ("zwidth-region", "filter-optimum")
+#: the renderable space's slices (issue 24), computed with the default renderable section when the profile has none
+RENDERABLE_PLOTS = ("space", "m-width")
 #: the plots that draw the profile's hardware trials: a bad trials file fails them
 TRIALS_PLOTS = ("zwidth-region",)
 #: the profile section each optional plot needs
@@ -258,6 +261,10 @@ def _export_plot(args: argparse.Namespace) -> int:
         from analysis.profiles import ControllerSection
 
         profile = profile.replace(controller=ControllerSection())
+    if args.plot in RENDERABLE_PLOTS and profile.renderable is None:
+        from analysis.profiles import RenderableSection
+
+        profile = profile.replace(renderable=RenderableSection())
     profile, code = _with_trials(profile, args.profile, check=args.plot in TRIALS_PLOTS)
     if profile is None:
         return code

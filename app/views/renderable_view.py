@@ -158,7 +158,7 @@ class RenderableSpaceView(PickablePlotView):
             if self.legend.getLabel(item) is not None:
                 self.legend.removeItem(item)
         for q in drawn:
-            where = "K" if self.stiffness <= 0 else f"K = {format_number(self.stiffness, 3)} N/m"
+            where = "K" if self.stiffness <= 0 else f"K = {format_number(self.stiffness)} N/m"
             self.legend.addItem(self.legend_lines[q], f"{QUALITY_LABELS[q]}: {where} renderable")
 
     def update_point(self, mass: float, damping: float) -> None:
