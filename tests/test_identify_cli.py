@@ -43,7 +43,7 @@ def test_identify_recovers_the_hbfd_and_writes_a_profile(frf, tmp_path, capsys):
     np.testing.assert_allclose(p.device.stiffnesses, truth.stiffnesses, rtol=1e-6)
     np.testing.assert_allclose(p.device.dampings, truth.dampings, rtol=1e-6)
     assert p.device.ground_dampings[3] == pytest.approx(5.0, rel=1e-6)
-    assert json.loads(out.read_text())["schema_version"] == 6
+    assert json.loads(out.read_text())["schema_version"] == 7
     sec = p.identification
     assert len(sec.intervals) == 11 and len(sec.measurements) == 1
     lo, hi = sec.intervals["masses[1]"]

@@ -40,7 +40,7 @@ def with_section(**changes) -> dict:
 
 def test_round_trip_keeps_every_number(tmp_path):
     p = profile_from_dict(with_section())
-    assert profile_to_dict(p)["schema_version"] == 6
+    assert profile_to_dict(p)["schema_version"] == 7
     save_profile(p, tmp_path / "p.json")
     q = load_profile(tmp_path / "p.json")
     assert q == p

@@ -31,11 +31,11 @@ def _v1_dict() -> dict:
 
 
 def test_schema_is_5_and_version_1_files_migrate():
-    assert SCHEMA_VERSION == 6
+    assert SCHEMA_VERSION == 7
     p = profile_from_dict(_v1_dict())
     assert p.wall is None and p.observer is None and p.simulation is None and p.identification is None
     assert p.controller is None
-    assert profile_to_dict(p)["schema_version"] == 6
+    assert profile_to_dict(p)["schema_version"] == 7
 
 
 def test_version_2_file_with_wall_section_migrates():

@@ -45,7 +45,7 @@ def _with(section: object) -> dict:
 
 
 def test_schema_6_round_trip_keeps_every_value(tmp_path):
-    assert SCHEMA_VERSION == 6
+    assert SCHEMA_VERSION == 7
     p = profile_from_dict(_with(copy.deepcopy(FULL)))
     r = p.renderable
     assert (r.virtual_mass, r.virtual_damping, r.virtual_stiffness) == (-0.05, 2.5, 750.0)
@@ -56,7 +56,7 @@ def test_schema_6_round_trip_keeps_every_value(tmp_path):
         (-0.4, 0.6, 11, -3.0, 70.0, 13)
     save_profile(p, tmp_path / "p.json")
     raw = json.loads((tmp_path / "p.json").read_text())
-    assert raw["schema_version"] == 6 and raw["renderable"] == FULL
+    assert raw["schema_version"] == 7 and raw["renderable"] == FULL
     assert load_profile(tmp_path / "p.json") == p
 
 
@@ -138,7 +138,7 @@ def test_older_versions_migrate_unchanged_without_the_section(version):
     d = _hbfd()
     d["schema_version"] = version
     m = migrate(d)
-    assert m["schema_version"] == 6 and "renderable" not in m
+    assert m["schema_version"] == 7 and "renderable" not in m
     assert {k: v for k, v in m.items() if k != "schema_version"} == {k: v for k, v in d.items() if k != "schema_version"}
     p = profile_from_dict(d)
     assert p.renderable is None

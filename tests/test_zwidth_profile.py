@@ -26,7 +26,7 @@ def _hbfd_dict() -> dict:
 
 
 def test_schema_5_round_trip_keeps_every_number(tmp_path):
-    assert SCHEMA_VERSION == 6
+    assert SCHEMA_VERSION == 7
     d = _hbfd_dict()
     d["controller"] = {"velocity_filter": {"kind": "butter2", "cutoff": 2 * math.pi * 42.5},
                        "b_range": {"min": 0.5, "max": 250.0, "points": 37}, "trials": "trials.csv"}
@@ -35,7 +35,7 @@ def test_schema_5_round_trip_keeps_every_number(tmp_path):
                                              "trials.csv")
     save_profile(p, tmp_path / "p.json")
     raw = json.loads((tmp_path / "p.json").read_text())
-    assert raw["schema_version"] == 6
+    assert raw["schema_version"] == 7
     assert raw["controller"] == {"velocity_filter": {"kind": "butter2", "cutoff": 2 * math.pi * 42.5},
                                  "b_range": {"min": 0.5, "max": 250.0, "points": 37}, "trials": "trials.csv"}
     assert load_profile(tmp_path / "p.json") == p
@@ -56,10 +56,10 @@ def test_older_versions_migrate_without_a_controller_section(version):
     d = _hbfd_dict()
     d["schema_version"] = version
     m = migrate(d)
-    assert m["schema_version"] == 6 and "controller" not in m
+    assert m["schema_version"] == 7 and "controller" not in m
     p = profile_from_dict(d)
     assert p.controller is None
-    assert profile_to_dict(p)["schema_version"] == 6
+    assert profile_to_dict(p)["schema_version"] == 7
 
 
 def test_version_4_file_with_a_controller_key_loads_it():

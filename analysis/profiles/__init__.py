@@ -20,6 +20,7 @@ from __future__ import annotations
 from .errors import ProfileError
 from .controller import ControllerSection, parse_controller
 from .renderable import RenderableSection, parse_renderable
+from .multidof import MultiDofSection, parse_multidof
 from .files import WriteError, atomic_write, bundled_profiles, read_json, sweep_temporaries, write_atomically
 from .fields import error_at, profile_from_current
 from .io import (
@@ -46,6 +47,8 @@ __all__ = [
     "parse_controller",
     "RenderableSection",
     "parse_renderable",
+    "MultiDofSection",
+    "parse_multidof",
     "DISPLAYS",
     "MIGRATIONS",
     "SCHEMA_VERSION",

@@ -24,6 +24,7 @@ from analysis.profiles.controller import parse_controller
 from analysis.profiles.errors import MISSING, ProfileError
 from analysis.profiles.identification import parse_identification
 from analysis.profiles.model import Profile
+from analysis.profiles.multidof import parse_multidof
 from analysis.profiles.renderable import parse_renderable
 from analysis.profiles.schema import GAIN_NAMES, PER_MASS_LISTS, SCHEMA, FIELDS_BY_NAME, Field
 from analysis.profiles.sections import parse_sections
@@ -217,6 +218,8 @@ def profile_from_current(data: Mapping) -> Profile:
         sections["controller"] = parse_controller(data["controller"])
     if "renderable" in data:
         sections["renderable"] = parse_renderable(data["renderable"])
+    if "multidof" in data:
+        sections["multidof"] = parse_multidof(data["multidof"])
     _check_per_mass(data, device.n)
     try:
         return Profile(name=name, notes=notes, device=device, display=display, **gains, **sections)

@@ -1,10 +1,11 @@
 """Device profiles: a device, its sample period and band, and the controller settings, as JSON.
 
-A profile file looks like this (schema version 6; the optional sections ``wall``,
+A profile file looks like this (schema version 7; the optional sections ``wall``,
 ``observer`` (schema 2), ``simulation`` (schema 3), ``identification`` (schema 4), ``controller``
-(schema 5) and ``renderable`` (schema 6) are described in :mod:`analysis.profiles.sections`)::
+(schema 5), ``renderable`` (schema 6) and ``multidof`` (schema 7) are described in
+:mod:`analysis.profiles.sections`)::
 
-    {"schema_version": 6, "name": "HBFD", "notes": "...",
+    {"schema_version": 7, "name": "HBFD", "notes": "...",
      "device": {"masses": [...], "stiffnesses": [...], "dampings": [...],
                 "ground_dampings": [...], "sensor_element": 0},
      "sample_time": 0.001, "band": {"min": 1.0},
@@ -62,7 +63,7 @@ __all__ = [
 ]
 
 #: Schema version written by :func:`save_profile` and the newest one :func:`load_profile` reads.
-SCHEMA_VERSION = 6
+SCHEMA_VERSION = 7
 
 #: ``MIGRATIONS[v]`` turns a schema-``v`` profile dict into a schema-``v + 1`` one.
 MIGRATIONS: dict[int, Callable[[dict], dict]] = dict(MIGRATION_STEPS)
@@ -217,6 +218,7 @@ def profile_to_dict(profile: Profile) -> dict:
         **({} if profile.identification is None else {"identification": profile.identification.to_dict()}),
         **({} if profile.controller is None else {"controller": profile.controller.to_dict()}),
         **({} if profile.renderable is None else {"renderable": profile.renderable.to_dict()}),
+        **({} if profile.multidof is None else {"multidof": profile.multidof.to_dict()}),
     }
 
 

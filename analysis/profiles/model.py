@@ -21,6 +21,7 @@ from analysis.checks import Real, choice, string
 from analysis.errors import ValidationError
 from analysis.profiles.controller import ControllerSection
 from analysis.profiles.identification import IdentificationSection, check_against_device
+from analysis.profiles.multidof import MultiDofSection
 from analysis.profiles.renderable import RenderableSection
 from analysis.profiles.schema import DISPLAYS, FIELDS_BY_NAME, GAIN_NAMES
 from analysis.profiles.sections import SimulationSection
@@ -97,6 +98,9 @@ class Profile:
     renderable:
         Optional section (schema 6): the rendered environment, its acceleration estimate, the
         qualities' settings and the renderable space's grid (:mod:`analysis.profiles.renderable`).
+    multidof:
+        Optional section (schema 7): a multi-DOF linkage, its handle position, the wall and the
+        workspace map's grid (:mod:`analysis.profiles.multidof`).
     """
 
     name: str
@@ -115,12 +119,14 @@ class Profile:
     identification: IdentificationSection | None = None
     controller: ControllerSection | None = None
     renderable: RenderableSection | None = None
+    multidof: MultiDofSection | None = None
 
     def __post_init__(self) -> None:
         for field_name, cls in (("wall", WallSettings), ("observer", ObserverSettings),
                                 ("simulation", SimulationSection),
                                 ("identification", IdentificationSection),
-                                ("controller", ControllerSection), ("renderable", RenderableSection)):
+                                ("controller", ControllerSection), ("renderable", RenderableSection),
+                                ("multidof", MultiDofSection)):
             value = getattr(self, field_name)
             if value is not None and not isinstance(value, cls):
                 raise ValidationError(field_name, f"None or {cls.__name__}", value)

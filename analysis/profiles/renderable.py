@@ -28,13 +28,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
 from analysis.errors import ValidationError
-from analysis.profiles.errors import MISSING, ProfileError
-from analysis.profiles.schema import FIELDS_BY_NAME, RENDERABLE, Field
+from analysis.profiles.declared import declared_tree, declared_value, read_declared
+from analysis.profiles.errors import ProfileError
+from analysis.profiles.schema import FIELDS_BY_NAME, RENDERABLE
 from analysis.sampled.rendered import AccelerationEstimate, RenderedEnvironment
 from analysis.sampled.velocity_noise import DEFAULT_FORCE_NOISE
 
@@ -44,30 +44,6 @@ __all__ = ["RenderableSection", "parse_renderable", "RENDERABLE_NAMES"]
 RENDERABLE_NAMES: tuple[str, ...] = tuple(
     name for name, (path, _) in FIELDS_BY_NAME.items() if path.startswith("$.renderable.")
 )
-
-
-def _rule(name: str, value: object) -> Any:
-    """``value`` checked by the schema's declaration of ``name`` (a ValidationError names ``name``)."""
-    node = FIELDS_BY_NAME[name][1]
-    if node.kind == "choice":
-        if not isinstance(value, str) or value not in node.options:
-            raise ValidationError(name, node.expected(), value)
-        return value
-    if node.kind == "choices":
-        names = (value,) if isinstance(value, str) else value
-        try:
-            out = tuple(names)
-        except TypeError:
-            raise ValidationError(name, node.expected(), value) from None
-        if not out or len(set(out)) != len(out) or any(not isinstance(q, str) or q not in node.options for q in out):
-            raise ValidationError(name, node.expected(), value)
-        return out
-    if node.kind == "integer":
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise ValidationError(name, f"an integer {node.range_text}".rstrip(), value)
-        node.rule(name, value)
-        return value
-    return node.rule(name, value)
 
 
 @dataclass(frozen=True)
@@ -135,7 +111,7 @@ class RenderableSection:
         for name in RENDERABLE_NAMES:
             value = getattr(self, name)
             if value is not None or name != "quiet_resolution":
-                object.__setattr__(self, name, _rule(name, value))
+                object.__setattr__(self, name, declared_value(name, value))
         for lo, hi, unit in (("band_low", "band_high", "rad/s"), ("mass_min", "mass_max", "kg"),
                              ("damping_min", "damping_max", "N s/m")):
             if not getattr(self, lo) < getattr(self, hi) and not (lo == "band_low" and self.band_low == self.band_high):
@@ -202,39 +178,7 @@ class RenderableSection:
         dict of str to Any
             The tree of :data:`analysis.profiles.schema.RENDERABLE`.
         """
-        return _tree(RENDERABLE, self)
-
-
-def _json(value: Any) -> Any:
-    if isinstance(value, float) and math.isinf(value):
-        return "inf" if value > 0 else "-inf"
-    return list(value) if isinstance(value, tuple) else value
-
-
-def _tree(node: Field, record: RenderableSection) -> dict[str, Any]:
-    return {c.key: _tree(c, record) if c.kind == "object" else _json(getattr(record, c.name)) for c in node.children}
-
-
-def _read(node: Field, value: object, path: str, out: dict[str, Any]) -> None:
-    """Collect the values under ``node`` by their API names, a bad one as a ProfileError at its path."""
-    if node.kind == "object" or node.kind == "section":
-        if not isinstance(value, Mapping):
-            raise ProfileError.at(path, "a JSON object with keys " + ", ".join(node.keys), value)
-        unknown = set(value) - set(node.keys)
-        if unknown:
-            raise ProfileError.at(f"{path}.{sorted(map(str, unknown))[0]}", f"no such key ({', '.join(node.keys)})", None)
-        for c in node.children:
-            if value.get(c.key, MISSING) is not MISSING:
-                _read(c, value[c.key], f"{path}.{c.key}", out)
-        return
-    if node.name == "quiet_resolution" and value is None:
-        return
-    if isinstance(value, str) and node.kind == "number" and value in ("inf", "-inf"):
-        value = float(value)
-    try:
-        out[node.name] = _rule(node.name, value)
-    except ValidationError as err:
-        raise ProfileError.at(path, err.allowed, err.value) from err
+        return declared_tree(RENDERABLE, self)
 
 
 def parse_renderable(data: object) -> RenderableSection:
@@ -256,7 +200,7 @@ def parse_renderable(data: object) -> RenderableSection:
         At the JSON path of the first bad or unknown key, e.g. ``$.renderable.grid.mass.points``.
     """
     values: dict[str, Any] = {}
-    _read(RENDERABLE, data, "$.renderable", values)
+    read_declared(RENDERABLE, data, "$.renderable", values, frozenset({"quiet_resolution"}))
     try:
         return RenderableSection(**values)
     except ValidationError as err:

@@ -17,8 +17,11 @@ above it, so nothing maps names to paths by hand:
   (the device ``zwidth identify`` fits: :func:`analysis.study.identify.profile_with_fit`).
 
 The optional ``renderable`` section (schema 6, issue 24: the rendered environment and the
-qualities' settings) is declared key by key here, each number with its rule, and read by these
-declarations (:mod:`analysis.profiles.renderable`); its record validates with the same rules.
+qualities' settings) and the optional ``multidof`` section (schema 7, issue 25: the linkage, the
+handle, the wall and the workspace map's grid) are declared key by key here, each number with its
+rule, and read by these declarations (:mod:`analysis.profiles.declared`, used by
+:mod:`analysis.profiles.renderable` and :mod:`analysis.profiles.multidof`); their records validate
+with the same rules.
 
 The other optional sections (``wall``, ``observer``, ``simulation``, ``identification``,
 ``controller``) are validated by their own records (:mod:`analysis.profiles.sections`,
@@ -69,6 +72,9 @@ __all__ = [
     "GRASP_SETS",
     "RENDERABLE",
     "MAX_GRID_POINTS",
+    "MULTIDOF",
+    "LINKAGE_KINDS",
+    "WALL_KINDS",
 ]
 
 #: ``Field.length``: one value per mass (``n``) or per element (``n - 1``).
@@ -280,6 +286,44 @@ RENDERABLE = Field("renderable", "section", name="renderable", required=False, c
         _pair("mass", "mass", _VIRTUAL_MASS), _pair("damping", "damping", _VIRTUAL_DAMPING))),
 ))
 
+#: The linkages of the ``multidof`` section (``$.multidof.linkage.kind``): the planar five-bar
+#: (:class:`analysis.transparency.five_bar.FiveBar`) for now.
+LINKAGE_KINDS = {"five_bar": "planar five-bar"}
+#: The walls of the ``multidof`` section (``$.multidof.wall.kind``): isotropic ``K I``, or a plane wall
+#: ``K n n^T`` with the normal ``$.multidof.wall.normal``.
+WALL_KINDS = {"isotropic": "isotropic wall (K I)", "normal": "plane wall along a normal (K n nᵀ)"}
+_LENGTH = Real(lo=0.0, lo_open=True, hi=10.0, unit="m")
+_COORDINATE = Real(lo=-10.0, hi=10.0, unit="m")
+_LINK_MASS = Real(lo=0.0, hi=MASS.hi, unit="kg")
+
+#: The optional ``multidof`` section (schema 7, issue 25): the linkage (a planar five-bar: link lengths,
+#: base, masses, rotor inertia, joint friction), the handle's position, the wall (isotropic or along a
+#: normal, with its damping) and the workspace map's grid.  Each number's API name is the field of
+#: :class:`analysis.profiles.multidof.MultiDofSection` that holds it.
+MULTIDOF = Field("multidof", "section", name="multidof", required=False, children=(
+    Field("linkage", "object", required=False, children=(
+        Field("kind", "choice", name="linkage_kind", options=tuple(LINKAGE_KINDS), required=False),
+        _number("l1", "l1", _LENGTH, required=False),
+        _number("l2", "l2", _LENGTH, required=False),
+        _number("base", "base", Real(lo=0.0, hi=10.0, unit="m"), required=False),
+        Field("proximal_masses", "numbers", name="proximal_masses", rule=_LINK_MASS, required=False),
+        Field("distal_masses", "numbers", name="distal_masses", rule=_LINK_MASS, required=False),
+        _number("handle_mass", "handle_mass", _LINK_MASS, required=False),
+        _number("rotor_inertia", "rotor_inertia", Real(lo=0.0, hi=1e3, unit="kg m^2"), required=False),
+        _number("joint_damping", "joint_damping", Real(lo=0.0, hi=1e6, unit="N m s/rad"), required=False),
+    )),
+    Field("handle", "object", name="handle", required=False, children=(
+        _number("x", "handle_x", _COORDINATE, required=False),
+        _number("y", "handle_y", _COORDINATE, required=False),
+    )),
+    Field("wall", "object", required=False, children=(
+        Field("kind", "choice", name="wall_kind", options=tuple(WALL_KINDS), required=False),
+        Field("normal", "numbers", name="wall_normal", rule=Real(lo=-1e6, hi=1e6, unit=""), required=False),
+        _number("damping", "wall_damping", Real(lo=0.0, hi=DAMPING.hi, unit="N s/m"), required=False),
+    )),
+    Field("map", "object", required=False, children=(_pair("x", "x", _COORDINATE), _pair("y", "y", _COORDINATE))),
+))
+
 #: The profile file (schema :data:`analysis.profiles.SCHEMA_VERSION`).
 SCHEMA = Field("$", "object", children=(
     Field("schema_version", "integer"),
@@ -318,6 +362,7 @@ SCHEMA = Field("$", "object", children=(
         Field("velocity_filter", "section", required=False, children=(Field("cutoff", "number", name="cutoff"),)),
     )),
     RENDERABLE,
+    MULTIDOF,
 ))
 
 

@@ -10,7 +10,10 @@
   file, parsed by :mod:`analysis.profiles.controller`, which :mod:`analysis.profiles.fields` calls);
 * schema 6: ``renderable`` (the rendered environment ``F = M a^ + B v^ + K x``, the qualities'
   settings and the renderable space's grid; issue 24), declared key by key in
-  :data:`analysis.profiles.schema.RENDERABLE` and parsed by :mod:`analysis.profiles.renderable`.
+  :data:`analysis.profiles.schema.RENDERABLE` and parsed by :mod:`analysis.profiles.renderable`;
+* schema 7: ``multidof`` (a multi-DOF linkage, its handle position, the wall and the workspace
+  map's grid; issue 25), declared key by key in :data:`analysis.profiles.schema.MULTIDOF` and
+  parsed by :mod:`analysis.profiles.multidof`.
 
 Every section is optional; an older file simply has none of them, so the migrations only
 raise the version number.  Errors name the JSON path, e.g. ``$.wall.mass`` or
@@ -31,7 +34,7 @@ from analysis.transparency.settings import ObserverSettings, WallSettings
 
 __all__ = ["SECTION_KEYS", "MIGRATION_STEPS", "SimulationSection", "parse_sections", "sections_to_dict"]
 
-SECTION_KEYS = ("wall", "observer", "simulation", "identification", "controller", "renderable")
+SECTION_KEYS = ("wall", "observer", "simulation", "identification", "controller", "renderable", "multidof")
 
 
 @dataclass(frozen=True)
@@ -91,7 +94,14 @@ def _to_6(data: dict) -> dict:
     return data
 
 
-MIGRATION_STEPS = {1: _to_2, 2: _to_3, 3: _to_4, 4: _to_5, 5: _to_6}
+def _to_7(data: dict) -> dict:
+    """Schema 6 -> 7: adds the optional ``multidof`` section (a linkage, its handle, the wall and the
+    workspace map's grid, issue 25) -- nothing to change: a profile without it is a one-axis device,
+    and the Workspace view shows the section's defaults."""
+    return data
+
+
+MIGRATION_STEPS = {1: _to_2, 2: _to_3, 3: _to_4, 4: _to_5, 5: _to_6, 6: _to_7}
 
 
 #: The names the settings records give themselves in a "not an object" error (see ``from_dict``).
