@@ -18,7 +18,8 @@
 * :mod:`.requests` -- what each computation depends on: frozen requests built from a profile
   (each computation takes its request, or a profile from which it builds it);
 * :mod:`.citations` -- the full references of the papers whose equation numbers zwidth shows;
-* :mod:`.renderable` -- the renderable (M, B, K) space and the M-width of a profile (issue 24).
+* :mod:`.renderable` -- the renderable (M, B, K) space and the M-width of a profile (issue 24);
+* :mod:`.workspace` -- the workspace map of a multi-DOF linkage and the limits at its handle (issue 25).
 """
 
 from __future__ import annotations
@@ -130,6 +131,17 @@ from .renderable import (
     renderable_study,
 )
 from .optimum import OPTIMUM_CUTOFFS, OptimumRequest, filter_optimum, optimum_kind, optimum_verdict
+from .workspace import (
+    HandleRequest,
+    WorkspacePoint,
+    WorkspaceRequest,
+    handle_edits,
+    inertia_ellipse,
+    multidof_section,
+    polar_curve,
+    workspace_point,
+    workspace_study,
+)
 from .identify import (
     BodeData,
     IdentifyResult,
@@ -174,6 +186,8 @@ __all__ = [
     "TwoAxisRequest", "TwoAxisStepRequest", "ZWidthRequest", "OptimumRequest", "TrialsRequest", "RobustRequest",
     "GRASPS", "QUALITY_LABELS", "RenderableRequest", "RenderableStudy", "damping_axis", "damping_from_axis",
     "environment_edits", "k_max_at", "renderable_section", "renderable_study",
+    "HandleRequest", "WorkspacePoint", "WorkspaceRequest", "handle_edits", "inertia_ellipse", "multidof_section",
+    "polar_curve", "workspace_point", "workspace_study",
     # deprecated aliases, for one release: analysis.sampled's functions of these names are other things
     "stability_map", "zwidth_region",
 ]
