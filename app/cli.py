@@ -17,6 +17,9 @@ Usage::
     zwidth space PROFILE -o FILE.csv [--qualities stable,passive,accurate] [--batch N] [--scheduler ADDRESS]
                                   the renderable (M, B, K) space, or a batch's robust space, as CSV
                                   and a plot (app/cli_space.py; more options: zwidth space --help)
+    zwidth workspace PROFILE -o FILE.csv [--plot FILE.png|svg]
+                                  the workspace map of the profile's multi-DOF linkage as CSV and a
+                                  plot (app/cli_workspace.py)
 
 Exit codes: 0 success, 1 bad profile (or the GUI cannot start), 2 usage error (among them an
 output file ``-o`` that is one of the command's input files), 130 ``identify`` cancelled by Ctrl-C.
@@ -33,18 +36,21 @@ from pathlib import Path
 
 __all__ = ["main"]
 
-SUBCOMMANDS = ("analyze", "design", "gui", "bench", "export-plot", "report", "identify", "space")
+SUBCOMMANDS = ("analyze", "design", "gui", "bench", "export-plot", "report", "identify", "space", "workspace")
 
 #: ``--plot`` names of ``export-plot`` -> figure keys of :mod:`app.report.figures`
 PLOTS = {"bound": "bound", "reserve": "reserve", "range": "range", "chart": "chart", "transparency": "tradeoff_j",
          "robustness": "tradeoff_l", "step": "step", "map": "map", "scenario-position": "scenario_position",
          "scenario-force": "scenario_force", "identify": "identify", "identify-phase": "identify_phase",
          "zwidth-region": "zwidth_region", "filter-optimum": "filter_optimum",
-         "space": "renderable_space", "m-width": "m_width"}
+         "space": "renderable_space", "m-width": "m_width", "workspace": "workspace_map",
+         "workspace-polar": "workspace_polar"}
 #: plots computed with the default controller section (backward difference, B 0.1-100) when the profile has none
 DEFAULT_SECTION_PLOTS = ("zwidth-region", "filter-optimum")
 #: the renderable space's slices (issue 24), computed with the default renderable section when the profile has none
 RENDERABLE_PLOTS = ("space", "m-width")
+#: the workspace of a multi-DOF linkage (issue 25), computed with the default multidof section when the profile has none
+MULTIDOF_PLOTS = ("workspace", "workspace-polar")
 #: the plots that draw the profile's hardware trials: a bad trials file fails them
 TRIALS_PLOTS = ("zwidth-region",)
 #: the profile section each optional plot needs
@@ -103,6 +109,9 @@ def _parser() -> argparse.ArgumentParser:
     from app.cli_space import add_space_parser
 
     add_space_parser(sub)
+    from app.cli_workspace import add_workspace_parser
+
+    add_workspace_parser(sub)
     gui = sub.add_parser("gui", help="open the GUI (the default)")
     gui.add_argument("profile", metavar="PROFILE", nargs="?", help="profile JSON file (default: HBFD)")
     return parser
@@ -265,6 +274,10 @@ def _export_plot(args: argparse.Namespace) -> int:
         from analysis.profiles import RenderableSection
 
         profile = profile.replace(renderable=RenderableSection())
+    if args.plot in MULTIDOF_PLOTS and profile.multidof is None:
+        from analysis.profiles import MultiDofSection
+
+        profile = profile.replace(multidof=MultiDofSection())
     profile, code = _with_trials(profile, args.profile, check=args.plot in TRIALS_PLOTS)
     if profile is None:
         return code
@@ -398,6 +411,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             from app.cli_space import run_space
 
             return run_space(args)
+        if args.command == "workspace":
+            from app.cli_workspace import run_workspace
+
+            return run_workspace(args)
         if args.command == "bench":
             from app.bench import run_bench
 

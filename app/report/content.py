@@ -50,6 +50,7 @@ from app.report.model import (
 )
 from app.report.observer_section import observer_part
 from app.report.renderable_section import renderable_part
+from app.report.workspace_section import workspace_part
 from app.report.zwidth_section import zwidth_part
 
 __all__ = ["ReportContent", "Section", "Row", "ReportCancelled", "gather", "num", "symbol_html", "app_version",
@@ -289,6 +290,7 @@ def gather(profile: Profile, *, source: str | None = None, sampled: bool = True,
         identification_part(profile),  # issue 14: only with the identification section
         zwidth_part(profile),  # issue 15: only with the controller section
         renderable_part(profile),  # issue 24: only with the renderable section
+        workspace_part(profile),  # issue 25: only with the multidof section
     ]
     numbers: Numbers = {}
     results: dict[str, Any] = {}

@@ -33,6 +33,7 @@ from app.report.model import Figure, ReportContent, num, symbol_html
 from app.report.plots import CurvesPlot
 from app.report.zwidth_figures import FIGURE_KEYS as ZWIDTH_FIGURES, zwidth_figure
 from app.report.renderable_figures import FIGURE_KEYS as RENDERABLE_FIGURES, renderable_figure
+from app.report.workspace_figures import FIGURE_KEYS as WORKSPACE_FIGURES, workspace_figure
 
 __all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "FIGURE_KEYS", "CurvesPlot",
            "quiet_messages", "prepare_view"]
@@ -223,7 +224,8 @@ def _scenario(content: ReportContent, key: str) -> Figure | None:
 _BUILDERS = {"bound": _bound, "reserve": _reserve, "range": _range, "chart": _chart, "tradeoff_j": _tradeoff, "tradeoff_l": _tradeoff,
              "step": _step, "map": _map, "scenario_position": _scenario, "scenario_force": _scenario,
              **{k: identify_figure for k in IDENTIFY_FIGURES}, **{k: zwidth_figure for k in ZWIDTH_FIGURES},
-             **{k: observer_figure for k in OBSERVER_FIGURES}, **{k: renderable_figure for k in RENDERABLE_FIGURES}}
+             **{k: observer_figure for k in OBSERVER_FIGURES}, **{k: renderable_figure for k in RENDERABLE_FIGURES},
+             **{k: workspace_figure for k in WORKSPACE_FIGURES}}
 
 
 def make_view(content: ReportContent, key: str) -> Figure | None:
@@ -242,7 +244,8 @@ def make_view(content: ReportContent, key: str) -> Figure | None:
 
 
 FIGURE_KEYS = ("bound", "reserve", "range", "chart", "tradeoff_j", "tradeoff_l", "step", "map", "scenario_position",
-               "scenario_force", *OBSERVER_FIGURES, *IDENTIFY_FIGURES, *ZWIDTH_FIGURES, *RENDERABLE_FIGURES)
+               "scenario_force", *OBSERVER_FIGURES, *IDENTIFY_FIGURES, *ZWIDTH_FIGURES, *RENDERABLE_FIGURES,
+               *WORKSPACE_FIGURES)
 
 
 def build_figures(content: ReportContent) -> list[Figure]:

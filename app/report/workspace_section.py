@@ -1,0 +1,79 @@
+"""The report's workspace part (issue 25), when the profile has a ``multidof`` section.
+
+Qt-free: :func:`workspace_part` (called by :func:`app.report.content.gather`) gives the design bound
+of the workspace map (the smallest critical stiffness of a plane wall over the grid of handle
+positions, with its position and normal) and, at the profile's handle, the critical stiffness of the
+isotropic wall, of the profile's wall and of the worst plane wall, and the principal effective
+masses, all from :mod:`analysis.study.workspace`.  Its figures (needing Qt) are in
+:mod:`app.report.workspace_figures`.
+"""
+
+from __future__ import annotations
+
+import html
+import math
+
+from analysis.errors import ValidationError
+from analysis.profiles import Profile
+from analysis.profiles.schema import WALL_KINDS
+from analysis.study import format_number, multidof_section, workspace_point, workspace_study
+from app.report.model import Numbers, Part, Row, Section, row
+
+__all__ = ["workspace_part"]
+
+
+def _angle(n: object) -> float:
+    """A wall normal's angle from the x axis [degrees], in [0, 180) (``n`` and ``-n`` are one wall)."""
+    return math.degrees(math.atan2(float(n[1]), float(n[0]))) % 180.0
+
+
+def workspace_part(profile: Profile) -> Part:
+    """The report's section on the workspace (empty without a ``multidof`` section), with the map and
+    the limits at the handle as its results (``workspace_map``, ``workspace_point``)."""
+    if profile.multidof is None:
+        return Part()
+    sec = multidof_section(profile)
+    m = workspace_study(profile)
+    b = m.minimum
+    numbers: Numbers = {}
+    rows: list[Row] = [
+        row(numbers, "workspace.bound", "design bound: smallest critical stiffness of a plane wall", "k<sub>min</sub>",
+            b.stiffness, "N/m"),
+        row(numbers, "workspace.bound_x", "its handle position, x", "x", b.position[0], "m"),
+        row(numbers, "workspace.bound_y", "its handle position, y", "y", b.position[1], "m"),
+        row(numbers, "workspace.bound_angle", "its wall normal, angle from the x axis", "&theta;", _angle(b.normal),
+            "&deg;"),
+        row(numbers, "workspace.reachable", "grid points the linkage reaches", "", float(m.reachable.sum()), ""),
+    ]
+    results: dict[str, object] = {"workspace_map": m}
+    note = ""
+    try:
+        pt = workspace_point(profile)
+    except ValidationError as err:
+        note = f" At the handle: {html.escape(str(err))}."
+    else:
+        results["workspace_point"] = pt
+        rows += [
+            row(numbers, "workspace.handle_isotropic", "at the handle: critical stiffness, isotropic wall", "k<sub>iso</sub>",
+                pt.isotropic, "N/m"),
+            row(numbers, "workspace.handle_wall", "at the handle: critical stiffness, the profile's wall", "k<sub>wall</sub>",
+                pt.wall, "N/m"),
+            row(numbers, "workspace.handle_worst", "at the handle: critical stiffness, worst plane wall", "k<sub>worst</sub>",
+                pt.worst.stiffness, "N/m"),
+            row(numbers, "workspace.handle_worst_angle", "at the handle: worst normal, angle from the x axis", "&theta;",
+                _angle(pt.worst.normal), "&deg;"),
+            row(numbers, "workspace.mass_min", "at the handle: lightest effective mass", "m<sub>1</sub>",
+                pt.principal_masses[0], "kg"),
+            row(numbers, "workspace.mass_max", "at the handle: heaviest effective mass", "m<sub>2</sub>",
+                pt.principal_masses[-1], "kg"),
+        ]
+    par = (f"The planar five-bar (links {format_number(sec.l1)} m and {format_number(sec.l2)} m, motors "
+           f"{format_number(sec.base)} m apart) is linearized at each of {sec.x_points} &times; {sec.y_points} handle "
+           f"positions, x from {format_number(sec.x_min)} to {format_number(sec.x_max)} m, y from "
+           f"{format_number(sec.y_min)} to {format_number(sec.y_max)} m; the exact sampled loop of the impedance "
+           f"display is checked against a wall of damping {format_number(sec.wall_damping)} N&middot;s/m, isotropic "
+           f"and along {m.directions} plane-wall normals at each point. The design bound is the smallest critical "
+           f"stiffness over the workspace, refined at its point. The handle is at ({format_number(sec.handle_x)}, "
+           f"{format_number(sec.handle_y)}) m; the profile's wall is the {html.escape(WALL_KINDS[sec.wall_kind])}."
+           + note)
+    return Part((Section("Multi-DOF workspace", (par,), tuple(rows)),), numbers, results)
