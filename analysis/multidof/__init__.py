@@ -19,7 +19,15 @@ Cartesian axes at the handle and the wall is rendered in Cartesian space:
   of handle positions of a planar five-bar (:class:`~analysis.transparency.five_bar.FiveBar`,
   the linkage's one home, re-exported here), and the design bound, the minimum over the
   workspace with its position (:mod:`analysis.multidof.workspace`); :func:`five_bar_device`
-  linearizes the five-bar at one position and refuses unreachable and singular ones by name.
+  linearizes the five-bar at one position and refuses unreachable and singular ones by name;
+* :class:`CableDrive`, :func:`cable_drive_model` -- a linkage with a cable drive per joint (motor
+  and link angles, ``2n`` coordinates), and its rigid-cable limit :func:`rigid_drive_device`
+  (:mod:`analysis.multidof.cable`); :class:`PhantomLinkage` -- a PHANToM-type 3-DOF serial
+  linkage, :data:`PHANTOM_15` its preset from Çavuşoğlu, Feygin & Tendick (2002), sources in
+  :data:`PHANTOM_15_SOURCES` (:mod:`analysis.multidof.serial`);
+* :func:`device_two_port`, :func:`lth_ratio`, :func:`lth_stiffness_bound` -- the two-port of the
+  device with a virtual coupling for ``m`` DOF and the absolute-stability criterion of Li,
+  Tavakoli & Huang, which is Llewellyn's for one axis (:mod:`analysis.multidof.twoport_mdof`).
 
 The plant is discretized by :func:`analysis.chain.discretize.discretize_zoh` and cached by value
 as :func:`analysis.sampled.loop.discrete_plants` is; stability is
@@ -36,6 +44,7 @@ Example
 
 from __future__ import annotations
 
+from analysis.multidof.cable import CableDrive, cable_drive_model, rigid_drive_device
 from analysis.multidof.limits import (
     DEFAULT_DIRECTIONS,
     PER_DECADE,
@@ -63,6 +72,21 @@ from analysis.multidof.model import (
     chain_model,
     structural_model,
 )
+from analysis.multidof.serial import (
+    PHANTOM_15,
+    PHANTOM_15_SOURCES,
+    PhantomLinkage,
+    serial_cable_model,
+    serial_device,
+)
+from analysis.multidof.twoport_mdof import (
+    LTHBound,
+    coupled_two_port,
+    default_frequencies,
+    device_two_port,
+    lth_ratio,
+    lth_stiffness_bound,
+)
 from analysis.multidof.workspace import (
     SINGULAR_RTOL,
     WorkspaceMap,
@@ -73,10 +97,15 @@ from analysis.multidof.workspace import (
 from analysis.transparency.five_bar import FiveBar
 
 __all__ = [
+    "CableDrive",
     "DEFAULT_DIRECTIONS",
     "DeviceLike",
     "FiveBar",
+    "LTHBound",
     "PER_DECADE",
+    "PHANTOM_15",
+    "PHANTOM_15_SOURCES",
+    "PhantomLinkage",
     "RigidCartesianDevice",
     "SINGULAR_RTOL",
     "SYMMETRY_RTOL",
@@ -84,16 +113,25 @@ __all__ = [
     "WorkspaceMap",
     "WorkspaceMinimum",
     "WorstNormal",
+    "cable_drive_model",
     "chain_model",
     "check_directions",
     "closed_loop_matrices",
+    "coupled_two_port",
     "critical_wall_stiffness",
+    "default_frequencies",
+    "device_two_port",
     "discrete_plant",
     "first_crossings",
     "five_bar_device",
     "loop_parts",
+    "lth_ratio",
+    "lth_stiffness_bound",
     "narrow_brackets",
     "plant_matrices",
+    "rigid_drive_device",
+    "serial_cable_model",
+    "serial_device",
     "structural_model",
     "wall_pencil",
     "wall_radii",
