@@ -293,7 +293,7 @@ def _pool_context(fn: Callable) -> multiprocessing.context.BaseContext:
         return multiprocessing.get_context("spawn")
     ctx = multiprocessing.get_context("forkserver")
     home = getattr(getattr(fn, "func", fn), "__module__", None)  # a partial's function's module
-    ctx.set_forkserver_preload([__name__] + ([home] if home and home != "__main__" else []))
+    ctx.set_forkserver_preload([__name__] + ([home] if home and home not in ("__main__", __name__) else []))
     return ctx
 
 

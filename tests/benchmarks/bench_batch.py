@@ -5,7 +5,7 @@ The devices are 1000 seeded samples of a box around a rigid 1-DOF device (the ha
 ``renderable_space(device, M, B)`` with M from -0.2 to 0.2 kg and B from 0.5 to 50.5 N s/m (21 each,
 stability only, one sample of delay).  It runs in this process (1 worker), on a local pool of 2
 processes and on a Dask ``LocalCluster`` of 2 worker processes (one thread each), each row with
-its speed-up over the one worker.  The per-task overhead is measured apart, with a task that
+its speed-up over the one worker and whether its result equals the one worker's bit for bit.  The per-task overhead is measured apart, with a task that
 does no work (:func:`tests.batch_devices.zeros`) over the same devices and chunks: its wall time
 over the number of tasks.  The pool's rows include starting its processes from the fork server
 (the first pool of a process also starts the server); the cluster's rows exclude starting the
@@ -47,8 +47,8 @@ def _tasks(n: int, workers: int) -> int:
     return -(-n // size)
 
 
-def _rows(label: str, run: Callable[..., object], devices: list, grid: str, base: float | None,
-          **where: object) -> tuple[list[dict], float]:
+def _rows(label: str, run: Callable[..., object], devices: list, grid: str, base: tuple[float, object] | None,
+          **where: object) -> tuple[list[dict], tuple[float, object]]:
     n = len(devices)
     workers = 2 if "client" in where else int(where.get("workers", 1))
     tasks = n if workers == 1 and "client" not in where else _tasks(n, workers)
@@ -56,13 +56,15 @@ def _rows(label: str, run: Callable[..., object], devices: list, grid: str, base
     t_idle, _ = _clock(lambda: intersect_devices(partial(zeros, shape=r.k_max.shape), devices, **where))
     row = {"name": f"robust space, {n} devices x {grid}, {label}", "median_ms": t_work * 1e3, "runs": 1,
            "tasks": tasks, "per_device_ms": t_work * 1e3 / n,
-           "speedup": (base / t_work) if base else 1.0,
+           "speedup": (base[0] / t_work) if base else 1.0,
+           "same_as_1_worker": base is None or bool(np.array_equal(r.k_max, base[1].k_max)
+                                                    and np.array_equal(r.binding, base[1].binding)),
            "overhead_per_task_ms": t_idle * 1e3 / tasks,
            "robust_volume_cells": int(np.count_nonzero(r.k_max)), "binding_devices": len(set(r.binding.flat))}
-    return [row], t_work
+    return [row], (t_work, r)
 
 
-def _cluster_rows(run: Callable[..., object], devices: list, grid: str, base: float) -> list[dict]:
+def _cluster_rows(run: Callable[..., object], devices: list, grid: str, base: tuple[float, object]) -> list[dict]:
     try:
         from distributed import Client, LocalCluster
     except ImportError:
