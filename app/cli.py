@@ -270,14 +270,11 @@ def _export_plot(args: argparse.Namespace) -> int:
         from analysis.profiles import ControllerSection
 
         profile = profile.replace(controller=ControllerSection())
-    if args.plot in RENDERABLE_PLOTS and profile.renderable is None:
-        from analysis.profiles import RenderableSection
+    if args.plot in RENDERABLE_PLOTS + MULTIDOF_PLOTS:
+        from analysis.profiles import MultiDofSection, RenderableSection
 
-        profile = profile.replace(renderable=RenderableSection())
-    if args.plot in MULTIDOF_PLOTS and profile.multidof is None:
-        from analysis.profiles import MultiDofSection
-
-        profile = profile.replace(multidof=MultiDofSection())
+        name, cls = ("renderable", RenderableSection) if args.plot in RENDERABLE_PLOTS else ("multidof", MultiDofSection)
+        profile = profile if getattr(profile, name) is not None else profile.replace(**{name: cls()})
     profile, code = _with_trials(profile, args.profile, check=args.plot in TRIALS_PLOTS)
     if profile is None:
         return code

@@ -32,11 +32,13 @@ DEVICE_FIELDS: tuple[str, ...] = (
 )
 #: Fields of the profile itself (``Profile.replace`` keywords).
 PROFILE_FIELDS: tuple[str, ...] = ("name", "notes", "display", "kc", "bc", "mc", "bc_adm", "kp", "kd",
-                                   "wall", "observer", "simulation", "identification", "controller", "renderable")
-#: Optional profile sections (schema 2 to 6); each is replaced as a whole settings object
+                                   "wall", "observer", "simulation", "identification", "controller", "renderable",
+                                   "multidof")
+#: Optional profile sections (schema 2 to 7); each is replaced as a whole settings object
 #: (``WallSettings``, ``ObserverSettings``, ``SimulationSection``, ``IdentificationSection``,
-#: ``ControllerSection``, ``RenderableSection``) or ``None``.
-SECTION_FIELDS: tuple[str, ...] = ("wall", "observer", "simulation", "identification", "controller", "renderable")
+#: ``ControllerSection``, ``RenderableSection``, ``MultiDofSection``) or ``None``.
+SECTION_FIELDS: tuple[str, ...] = ("wall", "observer", "simulation", "identification", "controller", "renderable",
+                                   "multidof")
 VECTOR_FIELDS: tuple[str, ...] = ("masses", "stiffnesses", "dampings", "ground_dampings")
 ALL_FIELDS: tuple[str, ...] = DEVICE_FIELDS + PROFILE_FIELDS
 
