@@ -348,21 +348,25 @@ def serial_cable_model(linkage: PhantomLinkage, position: object, sample_time: f
     return cable_drive_model(linkage.joint_mass(q), linkage.jacobian(q), linkage.drive, sample_time)
 
 
-#: Where each number of :data:`PHANTOM_15` comes from.  The drive's fields are not taken from the
-#: paper here (``None``): the user enters them.
+#: Where each number of :data:`PHANTOM_15` comes from.  The numbers are those of the paper's
+#: kinematic and mass-parameter tables as transcribed in a public reimplementation of its model;
+#: the paper itself could not be consulted when the preset was written, so the table numbers are
+#: not given here and the values should be checked against it.  The drive's fields are not
+#: entered (``None``): the user enters them.
+_CFT = "Çavuşoğlu, Feygin & Tendick 2002, PHANToM 1.5"
 PHANTOM_15_SOURCES = {
-    "l1": "Çavuşoğlu, Feygin & Tendick 2002: kinematic parameters of the PHANToM 1.5 (l1 = 0.215 m)",
-    "l2": "Çavuşoğlu, Feygin & Tendick 2002: kinematic parameters (l2 = 0.170 m)",
-    "l3": "Çavuşoğlu, Feygin & Tendick 2002: mass-parameter table (l3 = 0.0325 m)",
-    "mass_a": "Çavuşoğlu, Feygin & Tendick 2002: mass-parameter table (m_a)",
-    "mass_c": "Çavuşoğlu, Feygin & Tendick 2002: mass-parameter table (m_c)",
-    "inertia_a": "Çavuşoğlu, Feygin & Tendick 2002: mass-parameter table (I_axx, I_ayy, I_azz)",
-    "inertia_c": "Çavuşoğlu, Feygin & Tendick 2002: mass-parameter table (I_cxx, I_cyy, I_czz)",
-    "inertia_be": "Çavuşoğlu, Feygin & Tendick 2002: mass-parameter table (I_bexx, I_beyy, I_bezz)",
-    "inertia_df": "Çavuşoğlu, Feygin & Tendick 2002: mass-parameter table (I_dfxx, I_dfyy, I_dfzz)",
-    "inertia_base": "Çavuşoğlu, Feygin & Tendick 2002: mass-parameter table (I_baseyy)",
-    "drive": "not entered: motor inertia, ratio, cable stiffness and damping, motor and joint friction "
-             "are None until the user enters them",
+    "l1": f"{_CFT}: kinematic parameters, l1 = 0.215 m",
+    "l2": f"{_CFT}: kinematic parameters, l2 = 0.170 m",
+    "l3": f"{_CFT}: mass parameters, l3 = 0.0325 m",
+    "mass_a": f"{_CFT}: mass parameters, m_a = 0.0202 kg",
+    "mass_c": f"{_CFT}: mass parameters, m_c = 0.0249 kg",
+    "inertia_a": f"{_CFT}: mass parameters, I_axx, I_ayy, I_azz",
+    "inertia_c": f"{_CFT}: mass parameters, I_cxx, I_cyy, I_czz",
+    "inertia_be": f"{_CFT}: mass parameters, I_bexx, I_beyy, I_bezz",
+    "inertia_df": f"{_CFT}: mass parameters, I_dfxx, I_dfyy, I_dfzz",
+    "inertia_base": f"{_CFT}: mass parameters, I_baseyy",
+    "drive": "not entered: motor inertia, transmission ratio, cable stiffness and damping, motor and joint "
+             "friction are None until the user enters them",
 }
 
 #: The PHANToM 1.5 of Çavuşoğlu, Feygin & Tendick (2002): its links' lengths, masses and inertias
