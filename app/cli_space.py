@@ -7,7 +7,10 @@ Usage::
                  [--mass LOW:HIGH:N] [--damping LOW:HIGH:N] [--delay D]
                  [--batch N [--seed S] | --corners] [--workers N | --scheduler ADDRESS]
 
-The CSV has one row per (M, B): the mass [kg], the damping [N s/m], ``k_max`` [N/m] with every
+Everything not given on the command line comes from the profile, as the app's Renderable space
+view takes it (:class:`analysis.study.RenderableRequest`: the ``renderable`` section's grids,
+qualities, acceleration estimate and quality settings, or their defaults; the profile's velocity
+filter and delay).  The CSV has one row per (M, B): the mass [kg], the damping [N s/m], ``k_max`` [N/m] with every
 quality, the same for each quality, and with a batch the index of the device that binds it.  The
 plot draws ``k_max`` against B for up to five masses of the grid (PNG or SVG, beside the CSV by
 default).  ``--batch N`` draws N devices from the box of the profile's ``identification``
@@ -47,13 +50,14 @@ def add_space_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("profile", metavar="PROFILE", help="profile JSON file")
     p.add_argument("-o", "--output", required=True, metavar="FILE.csv", help="the CSV (never one of the input files)")
     p.add_argument("--plot", metavar="FILE", help="the plot, .png or .svg (default: the CSV's name with .png)")
-    p.add_argument("--qualities", default="stable", metavar="Q[,Q...]",
-                   help="comma-separated: stable, passive, accurate, quiet (default stable)")
+    p.add_argument("--qualities", metavar="Q[,Q...]",
+                   help="comma-separated: stable, passive, accurate, quiet (default: the profile's renderable section's)")
     p.add_argument("--mass", metavar="LOW:HIGH[:N]",
-                   help=f"virtual masses [kg] (default: minus to plus the device's total mass, {DEFAULT_GRID_POINTS})")
+                   help=f"virtual masses [kg], N evenly spaced (default N {DEFAULT_GRID_POINTS}; default grid: the "
+                   "profile's renderable section's)")
     p.add_argument("--damping", metavar="LOW:HIGH[:N]",
-                   help=f"virtual dampings [N s/m] (default 0:100:{DEFAULT_GRID_POINTS})")
-    p.add_argument("--delay", type=int, default=1, metavar="D", help="computation delay in samples (default 1)")
+                   help="virtual dampings [N s/m], N evenly spaced (default grid: the profile's renderable section's)")
+    p.add_argument("--delay", type=int, metavar="D", help="computation delay in samples (default: the profile's)")
     batch = p.add_mutually_exclusive_group()
     batch.add_argument("--batch", type=int, metavar="N", help="N devices drawn from the identified box")
     batch.add_argument("--corners", action="store_true", help="the 2^p corners of the identified box")
@@ -173,16 +177,16 @@ def _progress(total_label: str):
     return report
 
 
-def _compute(profile, args: argparse.Namespace, devices, qualities, mass, damping, settings):
-    """``(space, binding, error message)``."""
+def _compute(request, args: argparse.Namespace, devices, qualities, mass, damping):
+    """``(space, binding, error message)`` on the request's device, filter, acceleration and settings."""
     from analysis.sampled import renderable_space
     from analysis.sampled.batch import robust_renderable_space
 
-    ctrl = profile.controller
-    kw = {"delay_samples": args.delay, "velocity_filter": None if ctrl is None else ctrl.velocity_filter,
-          "qualities": qualities, "settings": settings}
+    kw = {"delay_samples": request.delay_samples if args.delay is None else args.delay,
+          "velocity_filter": request.velocity_filter, "acceleration": request.acceleration,
+          "qualities": qualities, "settings": request.settings}
     if devices is None:
-        return renderable_space(profile.device, mass, damping, **kw), None, None
+        return renderable_space(request.device, mass, damping, **kw), None, None
     client = None
     if args.scheduler:
         client = _client(args.scheduler)
@@ -197,17 +201,6 @@ def _compute(profile, args: argparse.Namespace, devices, qualities, mass, dampin
     return r, r.binding, None
 
 
-def _settings(profile):
-    """The qualities' settings: the controller section's encoder and force-noise limit, if it has them."""
-    from analysis.sampled import QualitySettings
-
-    ctrl = profile.controller
-    if ctrl is None or ctrl.encoder_resolution is None:
-        return None
-    kw = {} if ctrl.force_noise is None else {"force_noise": ctrl.force_noise}
-    return QualitySettings(encoder_resolution=ctrl.encoder_resolution, **kw)
-
-
 def write_plot(path: Path, mass: np.ndarray, damping: np.ndarray, k_max: np.ndarray, title: str) -> None:
     """K_max against B for up to :data:`PLOT_SLICES` masses of the grid (PNG or SVG, headless Qt)."""
     from app.report.figures import FIG_SIZE, ensure_app, prepare_view
@@ -215,6 +208,7 @@ def write_plot(path: Path, mass: np.ndarray, damping: np.ndarray, k_max: np.ndar
     ensure_app()  # offscreen when there is no display
     from app.views import export
     from app.views.curves_plot import CurvesPlot
+    from app.views.placement import LegendPlacer
 
     view = CurvesPlot(title, ("virtual damping B", "N·s/m"), ("K_max", "N/m"), log_y=True)
     rows = np.unique(np.linspace(0, mass.size - 1, min(PLOT_SLICES, mass.size)).round().astype(int))
@@ -223,7 +217,9 @@ def write_plot(path: Path, mass: np.ndarray, damping: np.ndarray, k_max: np.ndar
         none = "" if np.any(k_max[i] > 0) else " (no K)"  # nothing to draw on the log axis
         view.add_curve(key, f"M = {mass[i]:.4g} kg{none}", color, export_name=f"K_max at M = {mass[i]:.6g} kg")
         view.set_curve(key, damping, k_max[i], gaps=True)
+    placer = LegendPlacer(view)  # the legend where it hides the fewest points
     prepare_view(view)
+    placer.place()
     if path.suffix.lower() == ".svg":
         export.export_svg(view, path)
     else:
@@ -240,27 +236,30 @@ def run_space(args: argparse.Namespace) -> int:
     if problem is not None:
         return _usage(problem)
     try:
-        qualities = tuple(q.strip() for q in args.qualities.split(",") if q.strip())
-        mass_text = args.mass
-        damping = parse_grid(args.damping or f"0:100:{DEFAULT_GRID_POINTS}", "damping")
+        mass = None if args.mass is None else parse_grid(args.mass, "mass")
+        damping = None if args.damping is None else parse_grid(args.damping, "damping")
     except ValueError as err:
         return _usage(str(err))
+    if args.delay is not None and args.delay < 0:
+        return _usage("--delay must be at least 0")
     from analysis.profiles.io import ProfileError, load_profile
 
     try:
         profile = load_profile(args.profile)
     except ProfileError as err:
         return _error(str(err))
-    total = float(np.sum(profile.device.masses))
+    from analysis.study import RenderableRequest
+
     try:
-        mass = parse_grid(mass_text or f"{-total!r}:{total!r}:{DEFAULT_GRID_POINTS}", "mass")
-    except ValueError as err:
-        return _usage(str(err))
-    try:
+        request = RenderableRequest.of(profile)
+        qualities = request.qualities if args.qualities is None else tuple(
+            q.strip() for q in args.qualities.split(",") if q.strip())
+        mass = np.array(request.mass) if mass is None else mass
+        damping = np.array(request.damping) if damping is None else damping
         devices = _devices(profile, args)
         if isinstance(devices, str):
             return _error(f"{args.profile}: {devices}")
-        space, binding, why = _compute(profile, args, devices, qualities, mass, damping, _settings(profile))
+        space, binding, why = _compute(request, args, devices, qualities, mass, damping)
     except (ValidationError, DeviceFailed) as err:
         return _error(f"{args.profile}: {err}")
     except KeyboardInterrupt:
@@ -269,7 +268,8 @@ def run_space(args: argparse.Namespace) -> int:
     if why is not None:
         return _error(why)
     n = 1 if devices is None else len(devices)
-    notes = [f"zwidth space of {args.profile}: qualities {', '.join(space.qualities)}, delay {args.delay} samples",
+    delay = request.delay_samples if args.delay is None else args.delay
+    notes = [f"zwidth space of {args.profile}: qualities {', '.join(space.qualities)}, delay {delay} samples",
              "one device" if devices is None else f"robust space of {n} devices (binding_device: index from 0)"]
     text = space_csv(space.mass, space.damping, space.k_max, dict(space.by_quality), binding, notes)
     title = "K_max against B" + ("" if devices is None else f", robust over {n} devices")

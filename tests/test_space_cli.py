@@ -14,11 +14,12 @@ import pytest
 from cli_runner import run_cli
 
 from analysis.identify import parameter_box
-from analysis.profiles import save_profile
+from analysis.profiles import RenderableSection, save_profile
 from analysis.profiles.identification import IdentificationSection
 from analysis.profiles.io import bundled_profiles, load_profile
 from analysis.sampled import renderable_space
 from analysis.sampled.batch import box_corners, robust_renderable_space
+from analysis.study import RenderableRequest, renderable_study
 
 MASS, DAMPING = np.linspace(-0.2, 0.2, 3), np.linspace(1.0, 21.0, 3)
 GRID = ["--mass=-0.2:0.2:3", "--damping=1:21:3"]
@@ -50,7 +51,9 @@ def test_space_of_one_device_is_the_apis(capfd, tmp_path: Path) -> None:
     header, data = read(out)
     assert header == ["mass_kg", "damping_Ns_per_m", "k_max_N_per_m", "k_max_stable_N_per_m",
                       "k_max_passive_N_per_m"]
-    s = renderable_space(load_profile(rigid_path()).device, MASS, DAMPING, qualities=("stable", "passive"))
+    req = RenderableRequest.of(load_profile(rigid_path()))  # the profile's filter, delay and settings
+    s = renderable_space(req.device, MASS, DAMPING, req.delay_samples, req.velocity_filter, req.acceleration,
+                         ("stable", "passive"), settings=req.settings)
     assert np.array_equal(data[:, 0], np.repeat(MASS, 3)) and np.array_equal(data[:, 1], np.tile(DAMPING, 3))
     assert np.array_equal(data[:, 2], s.k_max.ravel())  # repr: every digit survives the CSV
     assert np.array_equal(data[:, 4], s.by_quality["passive"].ravel())
@@ -67,12 +70,32 @@ def test_robust_space_of_the_box_corners(capfd, tmp_path: Path, boxed: Path) -> 
     header, data = read(out)
     assert header[-1] == "binding_device"
     p = load_profile(boxed)
-    ref = robust_renderable_space(box_corners(parameter_box(p.device, INTERVALS)), MASS, DAMPING, workers=1)
+    req = RenderableRequest.of(p)
+    ref = robust_renderable_space(box_corners(parameter_box(p.device, INTERVALS)), MASS, DAMPING, req.delay_samples,
+                                  workers=1)
     assert np.array_equal(data[:, 2], ref.k_max.ravel())
     assert np.array_equal(data[:, -1], ref.binding.ravel())
-    one = renderable_space(p.device, MASS, DAMPING)  # the nominal device is inside the box
+    one = renderable_space(p.device, MASS, DAMPING, req.delay_samples)  # the nominal device is inside the box
     assert np.all(data[:, 2] <= one.k_max.ravel())
     assert b"<svg" in (tmp_path / "robust.svg").read_bytes()[:400]
+
+
+def test_the_profiles_renderable_section_sets_the_defaults(capfd, tmp_path: Path) -> None:
+    """Without --mass, --damping, --qualities and --delay: the section's grids and qualities, the
+    profile's delay, as the app's Renderable space view computes them."""
+    p = load_profile(rigid_path())
+    p = p.replace(renderable=RenderableSection(qualities=("stable", "passive"), mass_min=-0.1, mass_max=0.2,
+                                               mass_points=3, damping_min=-2.0, damping_max=30.0, damping_points=4))
+    path, out = tmp_path / "sec.json", tmp_path / "sec.csv"
+    save_profile(p, path)
+    r = run_cli(capfd, "space", path, "-o", out)
+    assert r.returncode == 0, r.stderr
+    header, data = read(out)
+    req = RenderableRequest.of(load_profile(path))
+    study = renderable_study(req)
+    assert header[3:] == ["k_max_stable_N_per_m", "k_max_passive_N_per_m"]
+    assert np.array_equal(data[:, 0], np.repeat(req.mass, 4)) and np.array_equal(data[:, 1], np.tile(req.damping, 3))
+    assert np.array_equal(data[:, 2], study.space.k_max.ravel())
 
 
 def test_batch_needs_the_identified_box(capfd, tmp_path: Path) -> None:
