@@ -8,6 +8,11 @@ import os
 import sys
 
 if __name__ == "__main__":
+    # the process pool of analysis.sampled.batch (zwidth space --batch) starts workers by
+    # re-running this executable: PyInstaller's documented hook for that
+    import multiprocessing
+
+    multiprocessing.freeze_support()
     if os.environ.get("ZWIDTH_SELFTEST") == "1":
         from app.selftest import run_selftest
 
