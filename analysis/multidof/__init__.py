@@ -55,6 +55,7 @@ from analysis.multidof.limits import (
     narrow_brackets,
     worst_normal,
 )
+from analysis.multidof.loci import frequency_first_crossings
 from analysis.multidof.loop import (
     closed_loop_matrices,
     discrete_plant,
@@ -88,6 +89,7 @@ from analysis.multidof.twoport_mdof import (
     lth_stiffness_bound,
 )
 from analysis.multidof.workspace import (
+    METHODS,
     SINGULAR_RTOL,
     WorkspaceMap,
     WorkspaceMinimum,
@@ -101,6 +103,7 @@ __all__ = [
     "DEFAULT_DIRECTIONS",
     "DeviceLike",
     "FiveBar",
+    "METHODS",
     "LTHBound",
     "PER_DECADE",
     "PHANTOM_15",
@@ -124,6 +127,7 @@ __all__ = [
     "discrete_plant",
     "first_crossings",
     "five_bar_device",
+    "frequency_first_crossings",
     "loop_parts",
     "lth_ratio",
     "lth_stiffness_bound",

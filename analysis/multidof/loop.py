@@ -183,7 +183,8 @@ def _check_walls(m: int, stiffness: object, damping: object) -> tuple[np.ndarray
 
 
 def loop_parts(device: DeviceLike, delay_samples: int = 0, grasp: Grasp = HANDS_OFF,
-               velocity_filter: VelocityFilter | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+               velocity_filter: VelocityFilter | None = None, *,
+               plant: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The closed loop without the wall: ``Phi = Phi_0 + G (-(K_w Y + B_w V))`` (module docstring).
 
     The wall's command ``u = -(K_w y + B_w v)`` is the only part of the loop that depends on the
@@ -200,6 +201,10 @@ def loop_parts(device: DeviceLike, delay_samples: int = 0, grasp: Grasp = HANDS_
         The human grasp at the handle (hands-off by default).
     velocity_filter : VelocityFilter or None, optional
         The velocity estimate of every axis; ``None`` for the backward difference.
+    plant : tuple of numpy.ndarray, optional
+        ``(Ad, Bd)`` of :func:`discrete_plant` for this device and grasp, shapes (2n, 2n) and
+        (2n, 2m), when the caller discretized many devices in one batch; ``None`` to take
+        them from :func:`discrete_plant`.
 
     Returns
     -------
@@ -226,7 +231,7 @@ def loop_parts(device: DeviceLike, delay_samples: int = 0, grasp: Grasp = HANDS_
         raise ValidationError("velocity_filter", "a VelocityFilter or None", vf)
     r = vf.realization(model.sample_time)
     p, T = r.order, model.sample_time
-    Ad, Bd = discrete_plant(model, (grasp,))
+    Ad, Bd = discrete_plant(model, (grasp,)) if plant is None else (plant[0][None], plant[1][None])
     N = n2 + m * (1 + p + d)
     iy, isf, iq = n2, n2 + m, n2 + m + p * m  # offsets: last y, filter states, queued commands
     eye_m = np.eye(m)

@@ -9,7 +9,10 @@ workspace or at (or within :data:`SINGULAR_RTOL` of) a singular configuration by
 
 :func:`workspace_map` evaluates, at every reachable point of a grid, the critical stiffness of
 the isotropic wall and the worst plane-wall normal of a dense check of directions, all points
-and directions in one batch (:func:`analysis.multidof.limits.first_crossings`); the design
+and directions in one batch: by default from each point's wall-free loop, its frequency response
+computed once and every wall a projection of it, certified on the exact loop
+(:func:`analysis.multidof.loci.frequency_first_crossings`), or by the scan of every wall
+(:func:`analysis.multidof.limits.first_crossings`, ``method="scan"``); the design
 bound, :attr:`WorkspaceMap.minimum`, is the smallest plane-wall stiffness over the workspace,
 with its position and normal, refined there by :func:`analysis.multidof.limits.worst_normal`
 (and never above the map's own smallest value: the conservative minimum).
@@ -26,16 +29,19 @@ from analysis.chain.velocity_filter import VelocityFilter
 from analysis.checks import integer, nonnegative
 from analysis.errors import ValidationError
 from analysis.multidof.limits import check_directions, first_crossings, worst_normal
+from analysis.multidof.loci import frequency_first_crossings
 from analysis.multidof.loop import loop_parts
 from analysis.multidof.model import RigidCartesianDevice
 from analysis.sampled.terminations import HANDS_OFF, Grasp
 from analysis.transparency.five_bar import FiveBar
 
-__all__ = ["SINGULAR_RTOL", "five_bar_device", "workspace_map", "WorkspaceMap", "WorkspaceMinimum"]
+__all__ = ["SINGULAR_RTOL", "METHODS", "five_bar_device", "workspace_map", "WorkspaceMap", "WorkspaceMinimum"]
 
 #: A configuration is refused as singular when the Jacobian's smallest singular value is below
 #: this fraction of its largest (the handle loses, or gains an infinitely light, direction).
 SINGULAR_RTOL = 1e-6
+#: The routes of :func:`workspace_map` to the critical stiffnesses: the certified loci, or the scan.
+METHODS = ("loci", "scan")
 
 
 def five_bar_device(linkage: FiveBar, position: object, sample_time: float = 1e-3) -> RigidCartesianDevice:
@@ -144,7 +150,7 @@ def _pencils(devices: list[RigidCartesianDevice], shapes: np.ndarray, damping: f
 
 def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, delay_samples: int = 1, *,
                   sample_time: float = 1e-3, grasp: Grasp = HANDS_OFF, velocity_filter: VelocityFilter | None = None,
-                  directions: int = 12, k_range: tuple[float, float] = (1.0, 1e9)) -> WorkspaceMap:
+                  directions: int = 12, k_range: tuple[float, float] = (1.0, 1e9), method: str = "loci") -> WorkspaceMap:
     """The isotropic and the worst plane-wall critical stiffness over a grid of handle positions.
 
     Parameters
@@ -167,6 +173,12 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
         Directions of the dense check at each point (over the half circle), 2 to 3600.
     k_range : tuple of (float, float), optional
         The scanned ``k`` [N/m], ``(low, high)``.
+    method : str, optional
+        ``"loci"`` (default): the crossings from the wall-free loop's frequency response, certified
+        on the exact loop (:func:`analysis.multidof.loci.frequency_first_crossings`); ``"scan"``:
+        the geometric scan and bisection of every wall
+        (:func:`analysis.multidof.limits.first_crossings`).  Both give the stable end of a
+        bracket of relative width 1e-12 of the exact loop.
 
     Returns
     -------
@@ -176,8 +188,8 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
     Raises
     ------
     ValidationError
-        When no grid point is reachable, the grid has more than 160000 points, or an argument
-        is out of range.
+        When no grid point is reachable, the grid has more than 160000 points, the method is
+        unknown, or an argument is out of range.
     """
     xs = np.asarray(x, dtype=float).reshape(-1)
     ys = np.asarray(y, dtype=float).reshape(-1)
@@ -185,6 +197,8 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
         raise ValidationError("x, y", "at most 160000 grid points", xs.size * ys.size)
     b = nonnegative("damping", damping, "N s/m")
     D = integer("directions", directions, 2, 3600)
+    if method not in METHODS:
+        raise ValidationError("method", " or ".join(repr(m) for m in METHODS), method)
     dirs = check_directions(2, D)
     shapes = np.concatenate([np.eye(2)[None], dirs[:, :, None] * dirs[:, None, :]])
     devices, points = [], []
@@ -197,7 +211,10 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
             points.append((j, i))
     if not devices:
         raise ValidationError("x, y", "a grid with at least one reachable, non-singular position", "none")
-    ks = first_crossings(*_pencils(devices, shapes, b, delay_samples, grasp, velocity_filter), k_range)
+    if method == "loci":
+        ks, _ = frequency_first_crossings(devices, shapes, b, delay_samples, grasp, velocity_filter, k_range)
+    else:
+        ks = first_crossings(*_pencils(devices, shapes, b, delay_samples, grasp, velocity_filter), k_range)
     ks = ks.reshape(len(devices), D + 1)
     shape = (ys.size, xs.size)
     reachable = np.zeros(shape, dtype=bool)

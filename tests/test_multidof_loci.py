@@ -1,0 +1,132 @@
+"""Multi-DOF (issue 25): the critical stiffnesses from the wall-free loop's loci, certified on the exact loop."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from analysis import Device
+from analysis.errors import ValidationError
+from analysis.multidof import (
+    FiveBar,
+    RigidCartesianDevice,
+    check_directions,
+    first_crossings,
+    five_bar_device,
+    frequency_first_crossings,
+    loop_parts,
+    wall_pencil,
+    wall_shape,
+    workspace_map,
+)
+from analysis.multidof.loci import _Loops, frequency_grid, loop_responses
+from analysis.sampled import CROSSING_RTOL, Grasp, VelocityFilter, is_stable, spectral_radius
+
+# Two k's that both are the stable end of a bracket of relative width CROSSING_RTOL around the
+# rule's one crossing agree to 2 CROSSING_RTOL.
+SAME_K = 2 * CROSSING_RTOL
+X6, Y6 = np.linspace(-0.1, 0.1, 6), np.linspace(0.12, 0.28, 6)
+
+
+def _shapes(directions: int) -> np.ndarray:
+    dirs = check_directions(2, directions)
+    return np.concatenate([np.eye(2)[None], dirs[:, :, None] * dirs[:, None, :]])
+
+
+def _rel(a: np.ndarray, b: np.ndarray) -> float:
+    both = np.isfinite(a) & np.isfinite(b) & (b > 0)
+    assert np.array_equal(np.isfinite(a), np.isfinite(b)) and np.array_equal(a == 0, b == 0)
+    return float(np.max(np.abs(a[both] / b[both] - 1.0))) if both.any() else 0.0
+
+
+def test_a_6x6_map_by_the_loci_equals_the_scan_within_the_bracket() -> None:
+    fb = FiveBar()
+    loci = workspace_map(fb, x=X6, y=Y6, damping=2.0, delay_samples=1, directions=12)
+    scan = workspace_map(fb, x=X6, y=Y6, damping=2.0, delay_samples=1, directions=12, method="scan")
+    assert np.array_equal(loci.reachable, scan.reachable) and loci.reachable.sum() >= 30
+    r = loci.reachable
+    assert _rel(loci.k_max[r], scan.k_max[r]) <= SAME_K
+    assert _rel(loci.worst_stiffness[r], scan.worst_stiffness[r]) <= SAME_K
+    assert loci.minimum.stiffness == pytest.approx(scan.minimum.stiffness, rel=SAME_K)
+    # the symmetric five-bar's mirror points tie within the bracket: either may be the minimum
+    assert np.allclose(np.abs(loci.minimum.position), np.abs(scan.minimum.position), rtol=0, atol=1e-15)
+    assert 500.0 < np.nanmin(loci.worst_stiffness) < np.nanmax(loci.k_max) < 1e5  # a real, finite map
+
+
+@pytest.mark.parametrize(("damping", "delay", "vf", "grasp", "tol"), [
+    (2.0, 0, None, Grasp(), SAME_K),
+    (5.0, 2, VelocityFilter("lowpass1", 600.0), Grasp(), SAME_K),
+    (3.0, 1, VelocityFilter("butter2", 900.0), Grasp(0.2, 1.0, 100.0), SAME_K),
+    (20.0, 1, None, Grasp(), SAME_K),  # the wall's damping alone destabilizes some walls: k = 0 there
+    # b = 0: the crossing pair leaves the circle so slowly (k d rho/dk ~ 1e-4) that the rule's
+    # rho <= 1 + 1e-12 is decided by round-off over ~1e-11 of k: both are brackets of it
+    (0.0, 1, None, Grasp(), 1e-10),
+])
+def test_loci_equal_the_scan_for_delays_filters_grasps_and_dampings(damping: float, delay: int, vf, grasp,
+                                                                    tol: float) -> None:
+    fb = FiveBar()
+    devices = [five_bar_device(fb, p) for p in [(0.0, 0.2), (0.06, 0.15), (-0.08, 0.25), (0.03, 0.27)]]
+    shapes = _shapes(8)
+    k, stats = frequency_first_crossings(devices, shapes, damping, delay, grasp, vf)
+    P0, P1 = zip(*(wall_pencil(d, shapes, damping, delay, grasp, vf) for d in devices))
+    ref = first_crossings(np.concatenate(P0), np.concatenate(P1)).reshape(k.shape)
+    assert _rel(k, ref) <= tol
+    assert stats["walls"] == k.size and stats["certified"] + stats["fallback"] <= k.size
+
+
+def test_a_dense_k_check_finds_no_unstable_k_below_the_reported_one() -> None:
+    fb = FiveBar()
+    devices = [five_bar_device(fb, p) for p in [(0.0, 0.2), (0.09, 0.13), (-0.05, 0.27)]]
+    shapes = _shapes(12)
+    k, _ = frequency_first_crossings(devices, shapes, 2.0, 1)
+    for dev, row in zip(devices, k):
+        P0, P1 = wall_pencil(dev, shapes, 2.0, 1)
+        for p0, p1, kc in zip(P0, P1, row):
+            ks = np.geomspace(1.0, kc, 600)  # ~230 a decade, up to the reported k itself
+            assert np.all(is_stable(spectral_radius(p0 + ks[:, None, None] * p1)))
+            assert not is_stable(spectral_radius(p0 + kc * (1 + CROSSING_RTOL) * p1))  # the bracket's top
+
+
+@pytest.mark.parametrize("device", [
+    RigidCartesianDevice(mass=[[0.3, 0.1], [0.1, 0.2]], damping=[[1.0, 0.3], [0.3, 0.5]]),
+    RigidCartesianDevice(mass=[[0.3, 0.1], [0.1, 0.2]]),  # no damping: a defective plant, solved whole
+    Device(masses=[0.05, 0.2, 0.3], stiffnesses=[2e4, 5e4], dampings=[2.0, 3.0], ground_dampings=[0.0, 0.1, 0.4],
+           sample_time=5e-4),
+], ids=["rigid", "undamped", "chain"])
+def test_modal_responses_equal_the_whole_loop_solved(device) -> None:
+    vf = VelocityFilter("lowpass1", 500.0)
+    loops = _Loops.build([device], 2, Grasp(0.1, 2.0, 300.0), vf)
+    w = frequency_grid(64)
+    Ty, Tv = loops.responses(np.array([0]), w)
+    ref = loop_responses(*(a[None] for a in loop_parts(device, 2, Grasp(0.1, 2.0, 300.0), vf)), w)
+    for got, want in zip((Ty, Tv), ref):
+        assert np.max(np.abs(got - want) / np.abs(want).max(axis=(-1, -2), keepdims=True)) < 1e-9
+
+
+@pytest.mark.parametrize("normal", [None, (1.0, 0.0), (0.6, -0.8)])
+def test_loci_of_a_rigid_and_a_chain_device_equal_the_scan(normal) -> None:
+    rigid = RigidCartesianDevice(mass=[[0.3, 0.1], [0.1, 0.2]], damping=[[1.0, 0.3], [0.3, 0.5]])
+    S = wall_shape(2, normal)
+    k, _ = frequency_first_crossings([rigid], S[None], 5.0, 1)
+    assert _rel(k[0], first_crossings(*wall_pencil(rigid, S, 5.0, 1))) <= SAME_K
+    chain = Device(masses=[0.05, 0.3], stiffnesses=[3e4], dampings=[2.0], sample_time=1e-3)
+    k, _ = frequency_first_crossings([chain], np.ones((1, 1, 1)), 30.0, 1)
+    assert _rel(k[0], first_crossings(*wall_pencil(chain, np.ones((1, 1)), 30.0, 1))) <= SAME_K
+
+
+def test_the_loci_spend_a_few_eigenproblems_a_wall() -> None:
+    fb = FiveBar()
+    devices = [five_bar_device(fb, (x, y)) for x in (-0.06, 0.0, 0.06) for y in (0.15, 0.22)]
+    _, stats = frequency_first_crossings(devices, _shapes(12), 2.0, 1)
+    # the scan spends about 134 a wall (24 a decade up to the crossing, then 38 halvings)
+    assert stats["certified"] == stats["walls"] == 6 * 13
+    assert stats["eigenproblems"] <= 10 * stats["walls"]
+
+
+def test_an_unknown_method_and_mixed_devices_are_refused_by_name() -> None:
+    with pytest.raises(ValidationError, match="method"):
+        workspace_map(FiveBar(), x=[0.0], y=[0.2], method="brent")
+    a = RigidCartesianDevice(mass=np.eye(2) * 0.2, sample_time=1e-3)
+    b = RigidCartesianDevice(mass=np.eye(2) * 0.2, sample_time=5e-4)
+    with pytest.raises(ValidationError, match="device 1 differs"):
+        frequency_first_crossings([a, b], np.eye(2)[None], 1.0)
