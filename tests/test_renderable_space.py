@@ -33,7 +33,8 @@ from analysis.chain import handle_impedance
 from analysis.sampled.loop import is_stable
 from analysis.sampled.qualities import accuracy_k, accuracy_mass_limits, stable_radius
 from analysis.sampled.rendered import handle_force_response, handle_transmission
-from test_m_width import hand_radius
+from analysis.sampled.terminations import god_object_wall
+from test_m_width import hand_radius, loop_radius
 
 T = 1e-3
 PROPS = settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -54,11 +55,10 @@ def test_zero_mass_is_the_zwidth_region_bit_for_bit(which, vf, hbfd):
     assert np.array_equal(s.k_max, s.by_quality["stable"])
 
 
-@pytest.mark.parametrize(("M", "B", "d"), [(0.2, 3.0, 1), (-0.2, 1.0, 1), (0.4, 10.0, 0), (-0.1, -1.0, 2)])
-def test_k_max_is_the_first_root_crossing_of_the_hand_polynomial(M, B, d):
-    m, b = 0.5, 2.0
-    s = renderable_space(rigid(m, b), mass=[M], damping=[B], delay_samples=d)
-    k = float(s.k_max[0, 0])
+def hand_k_max(m: float, b: float, M: float, B: float, d: int) -> float:
+    """The first K in [1, 1e9] N/m where the hand-built polynomial's largest root leaves the unit
+    circle (brute force: every root on 2000 points, then Brent), 0 if it is outside at 1 N/m, 1e9
+    if it never is."""
 
     def g(K: float) -> float:
         return hand_radius(m, b, M, B, K, d) - 1.0
@@ -66,11 +66,74 @@ def test_k_max_is_the_first_root_crossing_of_the_hand_polynomial(M, B, d):
     grid = np.geomspace(1.0, 1e9, 2000)
     vals = np.array([g(K) for K in grid])
     if vals[0] > 0:
-        assert k == 0.0
-        return
+        return 0.0
+    if not np.any(vals > 0):
+        return 1e9
     j = int(np.argmax(vals > 0))
-    assert j > 0
-    assert k == pytest.approx(optimize.brentq(g, grid[j - 1], grid[j], xtol=1e-12, rtol=1e-14), rel=1e-8)
+    return float(optimize.brentq(g, grid[j - 1], grid[j], xtol=1e-12, rtol=1e-14))
+
+
+@pytest.mark.parametrize(("M", "B", "d"), [(0.2, 3.0, 1), (-0.2, 1.0, 1), (0.4, 10.0, 0), (-0.1, -1.0, 2)])
+def test_k_max_is_the_first_root_crossing_of_the_hand_polynomial(M, B, d):
+    m, b = 0.5, 2.0
+    s = renderable_space(rigid(m, b), mass=[M], damping=[B], delay_samples=d)
+    ref = hand_k_max(m, b, M, B, d)
+    assert 1.0 < ref < 1e9  # a crossing, not a bound of the range
+    assert float(s.k_max[0, 0]) == pytest.approx(ref, rel=1e-8)
+
+
+# -- the held object's free step, singular (issue 24's crash) --------------------------------
+#: The device of the report: a rigid handle (kg, N s/m).
+CRASH_M, CRASH_B = 0.41476820043770657, 1.1611319651463206
+#: The god-object's mass (kg), the object the wall holds.
+OBJECT_MASS = god_object_wall().mass
+
+
+def free_step_denominator(M: float, B: float, K: float) -> float:
+    """The free object's implicit step, as the controller forms it: the object's inertia m_e/T^2
+    (no object damping at the god-object wall) plus the rendered environment's direct feedthrough
+    (K + B/T, then + M/T^2 of the second difference, the weight of x[k] in F[k])."""
+    return OBJECT_MASS / (T * T) + ((K + B / T) + M * (1.0 / (T * T))) + 0.0 / T
+
+
+def test_a_feedthrough_that_cancels_the_held_object_is_exact():
+    """The report: M = -2BT (B = 30 N s/m, T = 1 ms) and K = 1e4 N/m, a point of the trace's scan,
+    make the free object's step singular (0 in floating point too).  The wall holds the object
+    there (x_e = x_w), so the loop is the hand-built polynomial's, and the space is its crossing."""
+    M, B, K = -2 * 30.0 * T, 30.0, 1e4
+    assert free_step_denominator(M, B, K) == 0.0
+    rho = loop_radius(rigid(CRASH_M, CRASH_B), M, B, K, 1)
+    assert rho == pytest.approx(hand_radius(CRASH_M, CRASH_B, M, B, K, 1), rel=1e-9)
+    s = renderable_space(rigid(CRASH_M, CRASH_B), [M], [B])
+    assert float(s.k_max[0, 0]) == pytest.approx(hand_k_max(CRASH_M, CRASH_B, M, B, 1), rel=1e-8)
+    assert 1.0 < s.k_max[0, 0] < 1e9
+
+
+@st.composite
+def singular_points(draw) -> tuple[float, float, float]:
+    """(M, B, K) with the free object's step singular in floating point: M = -(m_e + B T + K T^2)."""
+    B = draw(st.floats(-5.0, 60.0))
+    K = draw(st.floats(1.0, 1e5))
+    M = -(OBJECT_MASS + B * T + K * T * T)
+    return M, B, K
+
+
+@PROPS
+@given(point=st.one_of(st.tuples(st.floats(-0.3, 0.6), st.floats(-1.0, 60.0), st.none()),
+                       singular_points().filter(lambda p: free_step_denominator(*p) == 0.0)))
+def test_the_space_never_raises_and_is_the_brute_force_crossing(point):
+    """Random (M, B), and points where the held object's free step is singular: the loop at that K
+    is the hand polynomial's, and k_max is the brute-force first crossing."""
+    M, B, K = point
+    dev = rigid(CRASH_M, CRASH_B)
+    if K is not None:
+        assert loop_radius(dev, M, B, K, 1) == pytest.approx(hand_radius(CRASH_M, CRASH_B, M, B, K, 1), rel=1e-9)
+    k = float(renderable_space(dev, [M], [B]).k_max[0, 0])
+    ref = hand_k_max(CRASH_M, CRASH_B, M, B, 1)
+    if ref in (0.0, 1e9):
+        assert k == ref
+    else:
+        assert k == pytest.approx(ref, rel=1e-8)
 
 
 def test_the_space_agrees_with_the_stability_predicate_on_either_side(hbfd):

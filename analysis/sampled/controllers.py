@@ -11,7 +11,9 @@ environment are solved together (implicit); both are linear, so that is one divi
   the coupling uses ``F_e[k-1]``.
 * impedance display, admittance environment (eq. 4, 6): ``F_d = F_e = Z_c (v_d - v_e)``;
   the object ``m_e v_e' = F_e - b_e v_e`` by backward Euler (with ``L``: driven by
-  ``F_e[k-1]``); the god-object wall holds ``x_e = x_w``.
+  ``F_e[k-1]``); the god-object wall holds ``x_e = x_w``.  The free object's implicit step
+  divides by ``m_e/T^2 + b_e/T`` plus the coupling's direct feedthrough; a rendered negative
+  mass can cancel it exactly, and then only the held object is defined (the free step is NaN).
 * admittance display (eq. 13, 30): ``F_d = k_p e + k_d (e - e[k-1])/T``, ``e = y - x_com``,
   and the coupling ``Y_cA = 1/b_c + T z/(m_c (z-1))`` (eq. 16): ``v_com = G/b_c + w``,
   ``w[k] = w[k-1] + T G/m_c``, ``x_com[k] = x_com[k-1] + T v_com``, where ``G`` is the force
@@ -34,6 +36,7 @@ constraint form.  :data:`DISPLAY_LOOPS` is the one mapping from the name a profi
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from types import SimpleNamespace
 from typing import Any, ClassVar
@@ -559,12 +562,18 @@ class ImpedanceLoop(DisplayLoop):
             v_f = (vprev + (T / me) * mem["fe"]) / (1.0 + T * be / me)
             x_f = xprev + T * v_f
         else:
+            # the free object's implicit step: its inertia and damping (a + b_e/T) plus the
+            # coupling's direct feedthrough kcp (the weight of delta[k] in F[k]; with a rendered
+            # environment K + B/T + M D/T^2).  A negative virtual mass can cancel them exactly:
+            # then the free object's step has no solution (NaN here), and only an object the
+            # wall holds (x_e = x_w, which never reads the free step) is defined
             a = me / (T * T)
-            x_f = (a * (xprev + T * vprev) + kcp * y - hist + (be / T) * xprev) / (a + kcp + be / T)
+            den = a + kcp + be / T
+            x_f = (a * (xprev + T * vprev) + kcp * y - hist + (be / T) * xprev) / pick(den == 0.0, math.nan, den)
             v_f = (x_f - xprev) / T
         on = engaged(x_f - p.xw, p.wall)
-        xe = pick(on, 0.0 * x_f + p.xw, x_f)
-        ve = pick(on, 0.0 * v_f, v_f)
+        xe = pick(on, 0.0 * y + p.xw, x_f)
+        ve = pick(on, 0.0 * y, v_f)
         delta = y - xe
         u = kcp * delta - hist
         new = {"delta": delta, "xe": xe, "ve": ve}
