@@ -21,14 +21,16 @@ from analysis import Device
 from analysis.errors import ValidationError
 from analysis.identify import parameter_box
 from analysis.progress import OperationCancelled
-from analysis.sampled import renderable_space
-from analysis.sampled.batch import (
+from analysis.sampled import (
     DeviceFailed,
+    QualitySettings,
     box_corners,
     box_samples,
     intersect_devices,
     map_devices,
+    renderable_space,
     robust_renderable_space,
+    space_volume,
 )
 
 M_GRID = np.array([-0.05, 0.0, 0.05])
@@ -186,6 +188,19 @@ def test_robust_renderable_space_is_the_minimum_of_the_devices_spaces() -> None:
     assert np.array_equal(r.binding, np.argmin([s.k_max for s in spaces], axis=0))
     assert np.any(r.k_max > 0)
     assert np.all(r.k_max <= np.minimum(r.by_quality["stable"], r.by_quality["passive"]))
+    # the volume by the one rule of a device's space, so no device's space is smaller than the robust one
+    assert r.volume == space_volume(r.mass, r.damping, r.k_max)
+    assert 0.0 < r.volume <= min(s.volume for s in spaces)
+    assert r.volume < max(s.volume for s in spaces)  # the corners differ: the intersection costs volume
+
+
+def test_one_device_robust_volume_is_its_own_and_follows_the_settings() -> None:
+    coarse = QualitySettings(k_range=(10.0, 1e6), b_ref=0.1)
+    own = renderable_space(rigid(), M_GRID, D_GRID, settings=coarse)
+    r = robust_renderable_space([rigid()], M_GRID, D_GRID, settings=coarse, workers=1)
+    assert np.array_equal(r.k_max, own.k_max)
+    assert r.volume == own.volume == space_volume(M_GRID, D_GRID, own.k_max, coarse)
+    assert r.volume != space_volume(M_GRID, D_GRID, own.k_max)  # the default floor and b_ref differ
 
 
 def test_robust_renderable_space_names_a_bad_field() -> None:

@@ -27,6 +27,7 @@ from analysis.sampled import (
     renders_passively,
     renders_quietly,
     renders_stably,
+    space_volume,
     zwidth_region,
 )
 from analysis.chain import handle_impedance
@@ -272,6 +273,19 @@ def test_volume_is_the_trapezoid_on_signed_log_damping():
     u = np.array([-math.log10(1.5), 1.0])  # sign(B) log10(1 + |B|/1 N s/m)
     assert s.volume == pytest.approx(0.2 * (u[1] - u[0]) * h.mean(), rel=1e-12)
     assert renderable_space(rigid(), mass=[0.1], damping=[1.0, 9.0], delay_samples=1).volume == 0.0
+    assert space_volume(s.mass, s.damping, s.k_max, s.settings) == s.volume
+
+
+def test_space_volume_is_public_and_names_a_bad_k_max():
+    m, b = [-1.0, 1.0], [0.0, 9.0]  # u = 0, 1: the volume is 2 kg x 1 decade x the mean height
+    assert space_volume(m, b, [[1.0, 1e3], [1e9, 1e12]]) == pytest.approx(2.0 * (0 + 3 + 9 + 9) / 4, rel=1e-15)
+    assert space_volume(m, b, np.zeros((2, 2))) == 0.0
+    with pytest.raises(ValidationError) as err:
+        space_volume(m, b, np.zeros((2, 3)))
+    assert err.value.field == "k_max"
+    with pytest.raises(ValidationError) as err:
+        space_volume(m, b, [[0.0, math.nan], [1.0, 1.0]])
+    assert err.value.field == "k_max"
 
 
 @PROPS

@@ -26,7 +26,13 @@ for the real sampled loop:
 * :func:`renderable_space` / :func:`m_width` -- the (M, B, K) space an impedance display renders
   with chosen qualities (:data:`QUALITIES`: stable, passive, accurate, quiet) and the M-width
   of Colonnese & Okamura; the rendered environment ``F = M a^ + B v^ + K x`` and its
-  acceleration estimate (:class:`AccelerationEstimate`) in :mod:`analysis.sampled.rendered`.
+  acceleration estimate (:class:`AccelerationEstimate`) in :mod:`analysis.sampled.rendered`,
+  the impedance felt at the handle (:func:`handle_transmission`, :func:`handle_force_response`)
+  and the space's volume (:func:`space_volume`);
+* :func:`robust_renderable_space` -- the space every device of a batch has (the corners or
+  samples of an identified parameter box: :func:`box_corners`, :func:`box_samples`), on a
+  process pool or a Dask cluster; :func:`map_devices` / :func:`intersect_devices` for any
+  per-device computation (:mod:`analysis.sampled.batch`).
 
 The loop model is documented in :mod:`analysis.sampled.loop`, the controllers of the two
 displays in :mod:`analysis.sampled.controllers`, the terminations in
@@ -98,9 +104,20 @@ __all__ = [
     "RenderedEnvironment",
     "RenderingController",
     "effective_environment",
+    "handle_force_response",
+    "handle_transmission",
     "m_width",
     "renderable_space",
     "rendered_force_response",
+    "space_volume",
+    "DeviceFailed",
+    "RobustRenderableSpace",
+    "RobustSpace",
+    "box_corners",
+    "box_samples",
+    "intersect_devices",
+    "map_devices",
+    "robust_renderable_space",
     "renders_accurately",
     "renders_passively",
     "renders_quietly",
@@ -215,10 +232,12 @@ _LAZY = {
                      "critical_stiffness_chart", "radii", "stability_map", "stable_end", "worst_case"), ".sweeps"),
     **dict.fromkeys(("Simulator", "detect", "simulate"), ".simulator"),
     **dict.fromkeys(("ACCELERATION_KINDS", "AccelerationEstimate", "RenderedEnvironment", "RenderingController",
-                     "rendered_force_response"), ".rendered"),
+                     "handle_force_response", "handle_transmission", "rendered_force_response"), ".rendered"),
     **dict.fromkeys(("EffectiveEnvironment", "QUALITIES", "QualitySettings", "effective_environment",
                      "renders_accurately", "renders_passively", "renders_quietly", "renders_stably"), ".qualities"),
-    **dict.fromkeys(("MWidth", "RenderableSpace", "m_width", "renderable_space"), ".renderable"),
+    **dict.fromkeys(("MWidth", "RenderableSpace", "m_width", "renderable_space", "space_volume"), ".renderable"),
+    **dict.fromkeys(("DeviceFailed", "RobustRenderableSpace", "RobustSpace", "box_corners", "box_samples",
+                     "intersect_devices", "map_devices", "robust_renderable_space"), ".batch"),
 }
 
 

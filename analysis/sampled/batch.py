@@ -60,7 +60,7 @@ from analysis.chain.velocity_filter import VelocityFilter
 from analysis.errors import ValidationError
 from analysis.progress import Cancelled, OperationCancelled, Progress, check_cancelled, report_progress
 from analysis.sampled.qualities import QualitySettings, check_qualities
-from analysis.sampled.renderable import renderable_space
+from analysis.sampled.renderable import renderable_space, space_volume
 from analysis.sampled.rendered import AccelerationEstimate
 
 __all__ = ["MAX_CHUNK", "MAX_DEVICES", "POLL_SECONDS", "DeviceBox", "DeviceFailed", "RobustSpace",
@@ -154,6 +154,10 @@ class RobustRenderableSpace:
         The qualities asked.
     devices : int
         Number of devices in the batch.
+    volume : float
+        The volume of the robust space ``k_max`` [kg decades^2], by the one rule of a single
+        device's space (:func:`~analysis.sampled.renderable.space_volume`), so that the two
+        compare: at most every device's own volume.
     """
 
     mass: np.ndarray
@@ -163,6 +167,7 @@ class RobustRenderableSpace:
     binding: np.ndarray
     qualities: tuple[str, ...]
     devices: int
+    volume: float
 
 
 # -- devices from a box -------------------------------------------------------------------------
@@ -546,8 +551,8 @@ def robust_renderable_space(devices: Sequence[Device], mass, damping, delay_samp
     Returns
     -------
     RobustRenderableSpace
-        The smallest ``k_max`` over the devices, for the space and each quality, and the device
-        that binds each ``(M, B)`` of the space.
+        The smallest ``k_max`` over the devices, for the space and each quality, the device
+        that binds each ``(M, B)`` of the space, and the robust space's volume.
 
     Raises
     ------
@@ -565,6 +570,7 @@ def robust_renderable_space(devices: Sequence[Device], mass, damping, delay_samp
     r = intersect_devices(fn, devices, workers=workers, client=client, chunk_size=chunk_size, progress=progress,
                           cancelled=cancelled)
     layers = {q: _read_only(r.k_max[i + 1].copy()) for i, q in enumerate(names)}
-    return RobustRenderableSpace(mass=m, damping=b, k_max=_read_only(r.k_max[0].copy()),
-                                 by_quality=MappingProxyType(layers), binding=_read_only(r.binding[0].copy()),
-                                 qualities=names, devices=r.devices)
+    k = _read_only(r.k_max[0].copy())
+    return RobustRenderableSpace(mass=m, damping=b, k_max=k, by_quality=MappingProxyType(layers),
+                                 binding=_read_only(r.binding[0].copy()), qualities=names, devices=r.devices,
+                                 volume=space_volume(m, b, k, settings))

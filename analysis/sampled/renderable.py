@@ -20,8 +20,8 @@ every B of one M; never a 3-D grid); passivity, accuracy and quiet are closed fo
 At M = 0 the row is exactly :func:`~analysis.sampled.zwidth.zwidth_region`'s ``k_max`` (no mass
 term is built).
 
-Volume: ``int int log10(max(k_max, k_floor)/k_floor) du dM`` over the grid by the trapezoid rule
-(kg decades^2), with the damping axis ``u(B) = sign(B) log10(1 + |B|/b_ref)`` (``b_ref`` = 1 N s/m
+Volume (:func:`space_volume`): ``int int log10(max(k_max, k_floor)/k_floor) du dM`` over the
+grid by the trapezoid rule (kg decades^2), with the damping axis ``u(B) = sign(B) log10(1 + |B|/b_ref)`` (``b_ref`` = 1 N s/m
 by default): logarithmic for ``|B| >> b_ref``, linear through 0, so negative dampings count
 symmetrically.  The M-width (:func:`m_width`) is the interval of M around 0 in which every M has
 every chosen quality at ``B = K = 0``.
@@ -67,7 +67,7 @@ from analysis.sampled.sweeps import first_crossing
 from analysis.sampled.terminations import Termination, god_object_wall
 from analysis.sampled.zwidth import stiffness_limits
 
-__all__ = ["RenderableSpace", "MWidth", "renderable_space", "m_width"]
+__all__ = ["RenderableSpace", "MWidth", "renderable_space", "m_width", "space_volume"]
 
 
 @dataclass(frozen=True)
@@ -191,13 +191,57 @@ def _stable_steps(mass: np.ndarray, damping: np.ndarray, s: QualitySettings) -> 
     return (int(nz < mass.size) + -(-nz // per)) * len(s.grasps)
 
 
-def _volume(mass: np.ndarray, damping: np.ndarray, k: np.ndarray, s: QualitySettings) -> float:
+def space_volume(mass, damping, k_max, settings: QualitySettings | None = None) -> float:
+    """The volume of a renderable space: M linear, B and K on logarithmic axes (module docstring).
+
+    ``int int log10(min(max(k_max, k_lo), k_hi)/k_lo) du dM`` over the grid by the trapezoid
+    rule, with ``(k_lo, k_hi) = settings.k_range`` and the signed-log damping axis
+    ``u(B) = sign(B) log10(1 + |B|/b_ref)`` (``b_ref = settings.b_ref``): logarithmic for
+    ``|B| >> b_ref``, linear through 0.  A cell with no K (``k_max = 0``) adds nothing; a grid
+    with one mass or one damping has volume 0.  The one rule for the volume of
+    :class:`RenderableSpace` and of a batch's robust space
+    (:class:`~analysis.sampled.batch.RobustRenderableSpace`), so that the two compare (Colonnese &
+    Chan, "Z-qualities and renderable mass-damping-stiffness spaces", IEEE Haptics Symposium
+    2016, compare displays by the extent of their spaces).
+
+    Parameters
+    ----------
+    mass : array_like
+        Virtual masses M [kg], strictly increasing, shape (NM,).
+    damping : array_like
+        Virtual dampings B [N s/m], strictly increasing, shape (NB,).
+    k_max : array_like
+        ``k_max[i, j]`` [N/m] of ``(mass[i], damping[j])``, at least 0, shape (NM, NB).
+    settings : QualitySettings or None, optional
+        Gives ``k_range`` and ``b_ref``; ``None`` for the defaults (1 to 1e9 N/m, 1 N s/m).
+
+    Returns
+    -------
+    float
+        The volume [kg decades^2].
+
+    Raises
+    ------
+    ValidationError
+        When ``k_max``'s shape is not (NM, NB) (``k_max``), a value is NaN or negative
+        (``k_max``), or ``settings`` is not a QualitySettings.
+    """
+    s = QualitySettings() if settings is None else settings
+    if not isinstance(s, QualitySettings):
+        raise ValidationError("settings", "a QualitySettings or None", settings)
+    m = np.asarray(mass, dtype=float).reshape(-1)
+    b = np.asarray(damping, dtype=float).reshape(-1)
+    k = np.asarray(k_max, dtype=float)
+    if k.shape != (m.size, b.size):
+        raise ValidationError("k_max", f"shape ({m.size}, {b.size}) (masses, dampings)", k.shape)
+    if np.isnan(k).any() or np.any(k < 0):
+        raise ValidationError("k_max", "values >= 0 (N/m)", k)
+    if m.size < 2 or b.size < 2:
+        return 0.0
     lo, hi = s.k_range
     h = np.log10(np.maximum(np.minimum(k, hi), lo) / lo)
-    u = np.sign(damping) * np.log10(1.0 + np.abs(damping) / s.b_ref)
-    if mass.size < 2 or damping.size < 2:
-        return 0.0
-    return float(np.trapezoid(np.trapezoid(h, u, axis=1), mass))
+    u = np.sign(b) * np.log10(1.0 + np.abs(b) / s.b_ref)
+    return float(np.trapezoid(np.trapezoid(h, u, axis=1), m))
 
 
 def renderable_space(device: Device, mass, damping, delay_samples: int = 1,
@@ -285,7 +329,7 @@ def renderable_space(device: Device, mass, damping, delay_samples: int = 1,
     k = np.min(np.stack(list(ordered.values())), axis=0)
     k.flags.writeable = False
     return RenderableSpace(mass=M, damping=B, k_max=k, by_quality=dict(ordered),
-                           volume=_volume(M, B, k, s), qualities=names, controller=ctrl, settings=s)
+                           volume=space_volume(M, B, k, s), qualities=names, controller=ctrl, settings=s)
 
 
 # -- the M-width -----------------------------------------------------------------------------
