@@ -10,8 +10,10 @@ Usage::
 Everything not given on the command line comes from the profile, as the app's Renderable space
 view takes it (:class:`analysis.study.RenderableRequest`: the ``renderable`` section's grids,
 qualities, acceleration estimate and quality settings, or their defaults; the profile's velocity
-filter and delay).  The CSV has one row per (M, B): the mass [kg], the damping [N s/m], ``k_max`` [N/m] with every
-quality, the same for each quality, and with a batch the index of the device that binds it.  The
+filter and delay).  The CSV is a table in the form of every zwidth CSV
+(:func:`app.views.export.table_csv_text`, headers ``quantity [unit]``), one row per (M, B):
+``M [kg]``, ``B [N·s/m]``, ``K_max (all qualities) [N/m]``, ``K_max (Q) [N/m]`` for each quality Q
+and, with a batch, ``binding device [-]`` (the index from 0 of the device that binds it).  The
 plot draws ``k_max`` against B for up to five masses of the grid (PNG or SVG, beside the CSV by
 default).  ``--batch N`` draws N devices from the box of the profile's ``identification``
 section (:func:`analysis.sampled.batch.box_samples`, seeded), ``--corners`` takes its corners; they
@@ -23,9 +25,7 @@ box, 2 for a usage error, 130 after Ctrl-C (nothing written).
 from __future__ import annotations
 
 import argparse
-import csv
 import importlib
-import io
 import sys
 from pathlib import Path
 
@@ -88,19 +88,21 @@ def parse_grid(text: str, name: str) -> np.ndarray:
 
 def space_csv(mass: np.ndarray, damping: np.ndarray, k_max: np.ndarray, by_quality: dict,
               binding: np.ndarray | None, notes: list[str]) -> str:
-    """The CSV text: ``# `` notes, a header, one row per (M, B) with every number in full precision."""
-    out = io.StringIO()
-    for note in notes:
-        out.write(f"# {note}\n")
-    w = csv.writer(out, lineterminator="\n")
-    w.writerow(["mass_kg", "damping_Ns_per_m", "k_max_N_per_m", *(f"k_max_{q}_N_per_m" for q in by_quality),
-                *(["binding_device"] if binding is not None else [])])
-    for i, m in enumerate(mass):
-        for j, b in enumerate(damping):
-            w.writerow([repr(float(m)), repr(float(b)), repr(float(k_max[i, j])),
-                        *(repr(float(a[i, j])) for a in by_quality.values()),
-                        *([int(binding[i, j])] if binding is not None else [])])
-    return out.getvalue()
+    """The CSV text as a table (:func:`app.views.export.table_csv_text`): ``# note:`` lines, a header,
+    one row per (M, B) (B fastest) with every number in full precision."""
+    from analysis.study import QUALITY_LABELS
+
+    from app.views.base import Axis
+    from app.views.export import table_csv_text
+    from app.views.renderable_view import B_AXIS, K_AXIS, M_AXIS
+
+    m, b = np.meshgrid(np.asarray(mass, float), np.asarray(damping, float), indexing="ij")
+    k = K_AXIS.quantity
+    columns = [(M_AXIS, m), (B_AXIS, b), (Axis(f"{k} ({QUALITY_LABELS['all']})", K_AXIS.unit), k_max),
+               *((Axis(f"{k} ({QUALITY_LABELS[q]})", K_AXIS.unit), a) for q, a in by_quality.items())]
+    if binding is not None:
+        columns.append((Axis("binding device", "-"), np.asarray(binding, int)))
+    return table_csv_text(columns, notes)
 
 
 def _usage(message: str) -> int:
@@ -270,7 +272,7 @@ def run_space(args: argparse.Namespace) -> int:
     n = 1 if devices is None else len(devices)
     delay = request.delay_samples if args.delay is None else args.delay
     notes = [f"zwidth space of {args.profile}: qualities {', '.join(space.qualities)}, delay {delay} samples",
-             "one device" if devices is None else f"robust space of {n} devices (binding_device: index from 0)"]
+             "one device" if devices is None else f"robust space of {n} devices (binding device: index from 0)"]
     text = space_csv(space.mass, space.damping, space.k_max, dict(space.by_quality), binding, notes)
     title = "K_max against B" + ("" if devices is None else f", robust over {n} devices")
     if not np.any(space.k_max > 0):

@@ -7,20 +7,19 @@ Usage::
 The linkage, the handle, the wall and the grid are the profile's ``multidof`` section (the
 section's defaults, said on stderr, when it has none); the loop (sample period, velocity filter,
 delay) is the profile's.  Everything comes from :mod:`analysis.study.workspace`.  The CSV has one row
-per grid point: x and y [m], whether the linkage reaches it, the critical stiffness of the
-isotropic wall and of the worst plane wall [N/m] and that wall's normal (empty where unreachable),
-every digit; ``#`` lines before the header give the design bound (the minimum over the workspace,
-its position and normal).  The plot (PNG or SVG, beside the CSV by default) is the app's Workspace
-map with the linkage at the handle.  Exit codes as ``zwidth``'s: 1 for a bad profile or a grid the
+per grid point, in the table form of every zwidth CSV (:func:`app.views.export.table_csv_text`,
+headers ``quantity [unit]``, an empty field where a quantity is not defined): ``x [m]``, ``y [m]``,
+``reachable [-]`` (1 or 0), the critical stiffness of the isotropic wall ``k_isotropic [N/m]`` and
+of the worst plane wall ``k_worst [N/m]``, and that wall's unit normal ``n_x [-]``, ``n_y [-]``
+(empty where unreachable), every digit; ``# note:`` lines before the header give the design bound
+(the minimum over the workspace, its position and normal).  The plot (PNG or SVG, beside the CSV
+by default) is the app's Workspace map with the linkage at the handle.  Exit codes as ``zwidth``'s: 1 for a bad profile or a grid the
 linkage does not reach, 2 for a usage error, 130 after Ctrl-C (nothing written).
 """
 
 from __future__ import annotations
 
 import argparse
-import csv
-import io
-import math
 import sys
 from pathlib import Path
 
@@ -39,23 +38,20 @@ def add_workspace_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--plot", metavar="FILE", help="the plot, .png or .svg (default: the CSV's name with .png)")
 
 
-def _number(v: float) -> str:
-    return "" if math.isnan(v) else repr(float(v))
-
-
 def workspace_csv(m: object, notes: list[str]) -> str:
-    """The CSV text of a :class:`~analysis.multidof.WorkspaceMap`: ``#`` notes, a header, one row per point."""
-    out = io.StringIO()
-    for note in notes:
-        out.write(f"# {note}\n")
-    w = csv.writer(out, lineterminator="\n")
-    w.writerow(["x_m", "y_m", "reachable", "k_isotropic_N_per_m", "k_worst_N_per_m", "normal_x", "normal_y"])
-    for j, y in enumerate(m.y):
-        for i, x in enumerate(m.x):
-            n = m.worst_normal[j, i]
-            w.writerow([repr(float(x)), repr(float(y)), int(m.reachable[j, i]), _number(m.k_max[j, i]),
-                        _number(m.worst_stiffness[j, i]), _number(n[0]), _number(n[1])])
-    return out.getvalue()
+    """The CSV text of a :class:`~analysis.multidof.WorkspaceMap` as a table
+    (:func:`app.views.export.table_csv_text`): ``# note:`` lines, a header, one row per point (x fastest)."""
+    import numpy as np
+
+    from app.views.base import Axis
+    from app.views.export import table_csv_text
+    from app.views.workspace_view import K_AXIS, X_AXIS, Y_AXIS
+
+    x, y = np.meshgrid(np.asarray(m.x, float), np.asarray(m.y, float))
+    n = np.asarray(m.worst_normal, float)
+    return table_csv_text([(X_AXIS, x), (Y_AXIS, y), (Axis("reachable", "-"), np.asarray(m.reachable, bool)),
+                           (Axis("k_isotropic", "N/m"), m.k_max), (K_AXIS, m.worst_stiffness),
+                           (Axis("n_x", "-"), n[..., 0]), (Axis("n_y", "-"), n[..., 1])], notes)
 
 
 def _usage(message: str) -> int:
@@ -141,7 +137,7 @@ def run_workspace(args: argparse.Namespace) -> int:
         point = None
     b = m.minimum
     notes = [f"zwidth workspace {Path(args.profile).name}: {sec.x_points} x {sec.y_points} handle positions, "
-             f"wall damping {format_number(sec.wall_damping)} N s/m",
+             f"wall damping {format_number(sec.wall_damping)} N·s/m",
              f"design bound (worst plane wall over the workspace): {float(b.stiffness)!r} N/m at x = "
              f"{float(b.position[0])!r} m, y = {float(b.position[1])!r} m, normal ({float(b.normal[0])!r}, "
              f"{float(b.normal[1])!r})"]

@@ -49,8 +49,8 @@ def test_space_of_one_device_is_the_apis(capfd, tmp_path: Path) -> None:
     r = run_cli(capfd, "space", rigid_path(), "-o", out, *GRID, "--qualities", "stable,passive")
     assert r.returncode == 0, r.stderr
     header, data = read(out)
-    assert header == ["mass_kg", "damping_Ns_per_m", "k_max_N_per_m", "k_max_stable_N_per_m",
-                      "k_max_passive_N_per_m"]
+    assert header == ["M [kg]", "B [N·s/m]", "K_max (all qualities) [N/m]", "K_max (stable) [N/m]",
+                      "K_max (passive) [N/m]"]
     req = RenderableRequest.of(load_profile(rigid_path()))  # the profile's filter, delay and settings
     s = renderable_space(req.device, MASS, DAMPING, req.delay_samples, req.velocity_filter, req.acceleration,
                          ("stable", "passive"), settings=req.settings)
@@ -68,7 +68,7 @@ def test_robust_space_of_the_box_corners(capfd, tmp_path: Path, boxed: Path) -> 
                 "--plot", tmp_path / "robust.svg")
     assert r.returncode == 0, r.stderr
     header, data = read(out)
-    assert header[-1] == "binding_device"
+    assert header[-1] == "binding device [-]"
     p = load_profile(boxed)
     req = RenderableRequest.of(p)
     ref = robust_renderable_space(box_corners(parameter_box(p.device, INTERVALS)), MASS, DAMPING, req.delay_samples,
@@ -93,7 +93,7 @@ def test_the_profiles_renderable_section_sets_the_defaults(capfd, tmp_path: Path
     header, data = read(out)
     req = RenderableRequest.of(load_profile(path))
     study = renderable_study(req)
-    assert header[3:] == ["k_max_stable_N_per_m", "k_max_passive_N_per_m"]
+    assert header[3:] == ["K_max (stable) [N/m]", "K_max (passive) [N/m]"]
     assert np.array_equal(data[:, 0], np.repeat(req.mass, 4)) and np.array_equal(data[:, 1], np.tile(req.damping, 3))
     assert np.array_equal(data[:, 2], study.space.k_max.ravel())
 

@@ -36,7 +36,7 @@ def test_workspace_writes_the_map_whose_minimum_is_the_analysis(capfd, profile_f
     proc = run_cli(capfd, "workspace", str(profile_file), "-o", str(out))
     assert proc.returncode == 0, proc.stderr
     header, rows = _rows(out)
-    assert header[:5] == ["x_m", "y_m", "reachable", "k_isotropic_N_per_m", "k_worst_N_per_m"]
+    assert header[:5] == ["x [m]", "y [m]", "reachable [-]", "k_isotropic [N/m]", "k_worst [N/m]"]
     req = WorkspaceRequest.of(load_profile(profile_file))
     m = workspace_map(req.linkage, req.x, req.y, req.damping, req.delay_samples, sample_time=req.sample_time)
     assert len(rows) == m.x.size * m.y.size
@@ -45,7 +45,7 @@ def test_workspace_writes_the_map_whose_minimum_is_the_analysis(capfd, profile_f
     j, i = np.unravel_index(int(np.nanargmin(worst)), worst.shape)
     assert (m.x[i], m.y[j]) == tuple(m.minimum.position)
     note = out.read_text(encoding="utf-8").splitlines()[1]
-    assert note.startswith("# design bound") and repr(float(m.minimum.stiffness)) in note
+    assert note.startswith("# note: design bound") and repr(float(m.minimum.stiffness)) in note
     assert {r[2] for r in rows} <= {"0", "1"} and all(r[3] == "" for r in rows if r[2] == "0")
     image = QImage(str(out.with_suffix(".png")))
     assert image.width() > 600 and image.height() > 200

@@ -10,6 +10,10 @@ leaves off-scale is dropped.  An empty field means "not defined here": a curve s
 another, or a NaN of the data (no filter has no cut-off, no K is stable at that B); ``inf`` and
 ``-inf`` are written as such (``float()`` reads them).  A view's notes (an empty result) come
 first as ``# note:`` lines.
+
+A table (:func:`table_csv_text`: one row per grid point, as ``zwidth space`` and ``zwidth
+workspace`` write) is the same form with one column per quantity, each headed ``quantity [unit]``
+(:data:`TABLE_HEADER_PATTERN`); a flag or an index is written as its digits.
 """
 
 from __future__ import annotations
@@ -19,6 +23,9 @@ import io
 import math
 import os
 import re
+from collections.abc import Sequence
+
+import numpy as np
 
 from PySide6.QtCore import QByteArray, QBuffer, QIODevice, QRectF, QSize
 from PySide6.QtGui import QColor, QImage, QPainter, QPicture
@@ -29,7 +36,8 @@ from app.views.base import Axis, PlotView
 from app.views.render import render_view, settle_layout
 
 __all__ = ["export_png", "export_svg", "svg_bytes", "export_csv", "csv_text", "render_view", "settle_layout",
-           "ExportError", "FORMATS", "HEADER_PATTERN", "DIMENSIONLESS", "column_header", "csv_field"]
+           "ExportError", "FORMATS", "HEADER_PATTERN", "DIMENSIONLESS", "column_header", "csv_field",
+           "TABLE_HEADER_PATTERN", "table_header", "table_csv_text"]
 
 FORMATS = {"png": "PNG image (*.png)", "svg": "SVG drawing (*.svg)", "csv": "CSV data (*.csv)"}
 
@@ -126,13 +134,23 @@ _DIMENSIONLESS_UNITS = ("", "–", "-")
 #: every CSV column header: ``curve: quantity [unit]`` (the curve's name may hold ": ", the
 #: quantity and the unit hold no brackets)
 HEADER_PATTERN = re.compile(r"^(?P<curve>.+): (?P<quantity>[^\[\]]+) \[(?P<unit>[^\[\]]+)\]$")
+#: every header of a table CSV: ``quantity [unit]`` (no curve: a column is one quantity over the grid)
+TABLE_HEADER_PATTERN = re.compile(r"^(?P<quantity>[^\[\]:]+) \[(?P<unit>[^\[\]]+)\]$")
+
+
+def _unit(axis: Axis) -> str:
+    return DIMENSIONLESS if axis.unit.strip() in _DIMENSIONLESS_UNITS else axis.unit
 
 
 def column_header(curve: str, axis: Axis) -> str:
     """A CSV column's header: ``"Re(1/Z_c): ω [rad/s]"`` (:data:`HEADER_PATTERN`); the curve's own
     name is the quantity where the axis names none (a plot of several dimensionless curves)."""
-    unit = DIMENSIONLESS if axis.unit.strip() in _DIMENSIONLESS_UNITS else axis.unit
-    return f"{curve}: {axis.quantity.strip() or curve} [{unit}]"
+    return f"{curve}: {axis.quantity.strip() or curve} [{_unit(axis)}]"
+
+
+def table_header(axis: Axis) -> str:
+    """A table column's header: ``"B [N·s/m]"`` (:data:`TABLE_HEADER_PATTERN`)."""
+    return f"{axis.quantity.strip()} [{_unit(axis)}]"
 
 
 def csv_field(value: float) -> str:
@@ -142,12 +160,16 @@ def csv_field(value: float) -> str:
     return "" if math.isnan(x) else repr(x)
 
 
+def _notes(out: io.StringIO, notes: Sequence[str]) -> None:
+    for note in notes:  # e.g. why a chart is empty: "# note: ..." before the header
+        out.write("# note: " + " ".join(note.split()) + "\n")
+
+
 def csv_text(view: PlotView) -> str:
     """The plotted data as CSV text: a header row (:func:`column_header`), then x/y columns per curve."""
     series = view.export_series()
     out = io.StringIO()
-    for note in view.export_notes():  # e.g. why a chart is empty: "# note: ..." before the header
-        out.write("# note: " + " ".join(note.split()) + "\n")
+    _notes(out, view.export_notes())
     w = csv.writer(out, lineterminator="\n")
     header: list[str] = []
     for s in series:
@@ -162,6 +184,25 @@ def csv_text(view: PlotView) -> str:
             else:
                 row += ["", ""]
         w.writerow(row)
+    return out.getvalue()
+
+
+def table_csv_text(columns: Sequence[tuple[Axis, Sequence[float] | np.ndarray]], notes: Sequence[str] = ()) -> str:
+    """A table as CSV text: ``# note:`` lines, a header row (:func:`table_header`), one row per point.
+
+    ``columns`` are (axis, values) of equal length (a grid flattened by the caller); a number is
+    written as :func:`csv_field` writes it (NaN empty, ``inf`` kept), an integer or boolean column
+    (a flag, an index) as its digits.
+    """
+    arrays = [np.asarray(values).ravel() for _, values in columns]
+    if len({a.size for a in arrays}) > 1:
+        raise ValueError("table_csv_text: the columns differ in length")
+    fields = [[str(int(v)) for v in a] if a.dtype.kind in "biu" else [csv_field(v) for v in a] for a in arrays]
+    out = io.StringIO()
+    _notes(out, notes)
+    w = csv.writer(out, lineterminator="\n")
+    w.writerow([table_header(axis) for axis, _ in columns])
+    w.writerows(zip(*fields))
     return out.getvalue()
 
 
