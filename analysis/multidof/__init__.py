@@ -20,6 +20,10 @@ Cartesian axes at the handle and the wall is rendered in Cartesian space:
   the linkage's one home, re-exported here), and the design bound, the minimum over the
   workspace with its position (:mod:`analysis.multidof.workspace`); :func:`five_bar_device`
   linearizes the five-bar at one position and refuses unreachable and singular ones by name;
+  the map's crossings come from :func:`frequency_first_crossings`: each point's wall-free loop,
+  its frequency response computed once and every wall a projection of it (the Nyquist /
+  characteristic-locus condition), certified by four eigenvalue computations a wall on the exact
+  loop (:mod:`analysis.multidof.loci`);
 * :class:`CableDrive`, :func:`cable_drive_model` -- a linkage with a cable drive per joint (motor
   and link angles, ``2n`` coordinates), and its rigid-cable limit :func:`rigid_drive_device`
   (:mod:`analysis.multidof.cable`); :class:`PhantomLinkage` -- a PHANToM-type 3-DOF serial

@@ -70,6 +70,7 @@ CERTIFY_WIDTH = 1e-8
 _REFINE_STEPS = 8  # regula falsi steps in w per crossing
 _GRID_CHUNK = 1 << 15  # (device, frequency, wall) triples per batch of the loci
 _RADII_CHUNK = 4096  # closed loops per batch of eigenvalue computations
+_QUANTUM = 2.0 ** -25  # the mantissa step of the certificate's points (relative 3e-8 to 6e-8)
 _MODAL_COND = 1e6  # largest condition number of the plant's eigenvectors for the modal responses
 _CHUNK = 1 << 15  # frequency responses per batch (memory)
 
@@ -311,13 +312,19 @@ def _refine(loops: _Loops, U: np.ndarray, sel: np.ndarray, damping: float, low: 
     return best
 
 
+def _congruence(U: np.ndarray, T: np.ndarray) -> np.ndarray:
+    """``U^T T U`` of each (U (C, m, r), T (C, m, m)) by explicit sums: each one's digits do not
+    depend on the batch (a batched einsum's may), so a point's result is the same in any grid."""
+    TU = (T[:, :, :, None] * U[:, None, :, :]).sum(axis=2)  # (C, m, r)
+    return (U[:, :, :, None] * TU[:, :, None, :]).sum(axis=1)  # (C, r, r)
+
+
 def _candidate_loci(loops: _Loops, U: np.ndarray, damping: float, p: np.ndarray, wi: np.ndarray,
                     w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_loci` of loop ``p[i]`` and wall ``wi[i]`` at frequency ``w[i]`` (one each)."""
     Ty, Tv = loops.responses(p, w[:, None])
     Ui = U[wi]
-    A = np.einsum("cia,cij,cjb->cab", Ui, Ty[:, 0], Ui, optimize=True)
-    C = damping * np.einsum("cia,cij,cjb->cab", Ui, Tv[:, 0], Ui, optimize=True) + np.eye(U.shape[2])
+    A, C = _congruence(Ui, Ty[:, 0]), damping * _congruence(Ui, Tv[:, 0]) + np.eye(U.shape[2])
     return _loci(A, C)
 
 
@@ -329,6 +336,19 @@ def _radii(P0: np.ndarray, P1: np.ndarray, idx: np.ndarray, ks: np.ndarray) -> n
         i = idx[s:s + step]
         out[s:s + step] = spectral_radius(P0[i, None] + ks[s:s + step, :, None, None] * P1[i, None])
     return out
+
+
+def _canonical(k: np.ndarray, steps: Sequence[int]) -> np.ndarray:
+    """Points ``steps`` quanta from ``k`` rounded up on a fixed grid of relative step ~4e-8 (exact arithmetic).
+
+    The certificate evaluates the loop there, not at ``k`` itself: a crossing that the loci found
+    within round-off of another batch's (a point computed in another grid, a band of rows) gives
+    the same points, hence the same eigenvalues and the same result, bit for bit (unless it
+    straddles a grid point, about 1e-5 of the walls).
+    """
+    m, e = np.frexp(k)
+    q = np.ceil(m / _QUANTUM) * _QUANTUM
+    return np.ldexp(q[:, None] + np.asarray(steps, dtype=float) * _QUANTUM, e[:, None])
 
 
 def certified_crossings(P0: np.ndarray, P1: np.ndarray, guess: np.ndarray, k_range: tuple[float, float] = (1.0, 1e9),
@@ -368,16 +388,17 @@ def certified_crossings(P0: np.ndarray, P1: np.ndarray, guess: np.ndarray, k_ran
         return out, cost
     # two unstable points just above the crossing: their radii (the crossing pair's modulus,
     # analytic in k) extrapolate to the rule's own crossing rho = 1 + STABILITY_TOLERANCE
-    ks = guess[idx, None] * (1.0 + CERTIFY_WIDTH * np.array([1.0, 2.0]))
+    ks = _canonical(guess[idx] * (1.0 + CERTIFY_WIDTH), [0, 1, -8])  # above, above, below the crossing
+    floor, ks = ks[:, 2], ks[:, :2]
     rho = _radii(P0, P1, idx, ks)
     cost[idx] += 2
     good = (rho[:, 0] > 1.0) & (rho[:, 1] > rho[:, 0])
-    idx, ks, rho = idx[good], ks[good], rho[good]
+    idx, ks, rho, floor = idx[good], ks[good], rho[good], floor[good]
     if idx.size == 0:
         return out, cost
     slope = (rho[:, 1] - rho[:, 0]) / (ks[:, 1] - ks[:, 0])
     ke = ks[:, 0] + (1.0 + STABILITY_TOLERANCE - rho[:, 0]) / slope
-    ke = np.clip(ke, guess[idx] * (1 - CERTIFY_WIDTH), ks[:, 1])
+    ke = np.clip(ke, floor, ks[:, 1])
     half = 0.4 * rtol
     # the final bracket; its stable end also certifies everything below it, since the loci found
     # no other crossing above k_range[0]: a root outside the circle there would still be outside
@@ -390,7 +411,7 @@ def certified_crossings(P0: np.ndarray, P1: np.ndarray, guess: np.ndarray, k_ran
     rest = np.flatnonzero(~fine)
     if rest.size:  # the rule is not linear enough there: bisect a bracket of the points evaluated
         j = idx[rest]
-        low = guess[j] * (1 - CERTIFY_WIDTH)
+        low = floor[rest]
         low_ok = np.where(below[rest], True, np.asarray(is_stable(_radii(P0, P1, j, low[:, None])[:, 0]), dtype=bool))
         cost[j[~below[rest]]] += 1
         low = np.where(below[rest], pair[rest, 0], low)
@@ -400,7 +421,7 @@ def certified_crossings(P0: np.ndarray, P1: np.ndarray, guess: np.ndarray, k_ran
         top = cands[np.arange(rest.size), np.argmax(bad, axis=1)]
         j, low, top = j[ok], low[ok], top[ok]
         out[j] = narrow_brackets(P0[j], P1[j], low, top, rtol)
-        cost[j] += int(math.ceil(math.log2(max(math.log1p(3 * CERTIFY_WIDTH) / math.log1p(rtol), 1.0))))
+        cost[j] += int(math.ceil(math.log2(max(math.log1p(20 * _QUANTUM) / math.log1p(rtol), 1.0))))
     return out, cost
 
 
