@@ -11,16 +11,26 @@ from analysis.multidof import (
     FiveBar,
     RigidCartesianDevice,
     check_directions,
+    critical_wall_stiffness,
     first_crossings,
     five_bar_device,
     frequency_first_crossings,
     loop_parts,
+    normal_device,
     wall_pencil,
     wall_shape,
     workspace_map,
 )
 from analysis.multidof.loci import _Loops, frequency_grid, loop_responses
-from analysis.sampled import CROSSING_RTOL, Grasp, VelocityFilter, is_stable, spectral_radius
+from analysis.sampled import (
+    CROSSING_RTOL,
+    Grasp,
+    VelocityFilter,
+    critical_stiffness,
+    is_stable,
+    spectral_radius,
+    zwidth_region,
+)
 
 # Two k's that both are the stable end of a bracket of relative width CROSSING_RTOL around the
 # rule's one crossing agree to 2 CROSSING_RTOL.
@@ -143,3 +153,40 @@ def test_a_point_gets_the_same_value_in_any_batch() -> None:
         assert _rel(joined.ravel(), getattr(whole, name).ravel()) <= SAME_K
         same = (joined == getattr(whole, name)) | (np.isnan(joined) & np.isnan(getattr(whole, name)))
         assert np.count_nonzero(~same) <= 1  # bit for bit but for a rare straddle of the grid of k
+
+
+# -- the third layer: the 1-DOF Z-width area along the worst normal ---------------------------
+def test_the_device_along_a_principal_normal_is_the_plane_walls_loop() -> None:
+    dev = RigidCartesianDevice(mass=np.diag([0.2, 0.5]), damping=np.diag([0.3, 1.5]))
+    one = normal_device(dev, [-3.0, 0.0])  # the sign and length of the normal do not matter
+    assert one.masses[0] == pytest.approx(0.2, rel=1e-15) and one.ground_dampings[0] == pytest.approx(0.3, rel=1e-15)
+    b = np.array([0.5, 2.0, 8.0])
+    plane = np.array([critical_wall_stiffness(dev, damping=bi, delay_samples=1, normal=[1.0, 0.0]) for bi in b])
+    # the plane wall's loop has the free axis's modes besides: its rule's crossing moves by round-off
+    assert _rel(np.array([critical_stiffness(one, bi, 1) for bi in b]), plane) <= 1e-11
+    assert _rel(zwidth_region(one, b, 1, passive=False).k_max, plane) <= 1e-9  # the region's own bisection
+
+
+def test_the_device_along_a_normal_pushes_the_free_handles_mass() -> None:
+    M = np.array([[0.3, 0.1], [0.1, 0.2]])
+    dev = RigidCartesianDevice(mass=M, damping=2.5 * M)  # proportional damping: b_n = 2.5 m_n
+    for th in np.linspace(0.0, np.pi, 7):
+        n = np.array([np.cos(th), np.sin(th)])
+        one = normal_device(dev, n)
+        assert one.masses[0] == pytest.approx(1.0 / (n @ np.linalg.solve(M, n)), rel=1e-13)
+        assert one.masses[0] <= n @ M @ n + 1e-15  # the free handle is lighter than the constrained one
+        assert one.ground_dampings[0] == pytest.approx(2.5 * one.masses[0], rel=1e-12)
+    with pytest.raises(ValidationError, match="normal"):
+        normal_device(dev, [0.0, 0.0])
+
+
+def test_the_maps_zwidth_layer_is_the_area_along_each_worst_normal() -> None:
+    fb, x, y = FiveBar(), [-0.06, 0.0, 0.5], [0.2]  # the last point is out of reach
+    b = [0.5, 1.0, 2.0, 4.0]
+    m = workspace_map(fb, x=x, y=y, damping=2.0, delay_samples=1, directions=8, zwidth_b=b)
+    assert workspace_map(fb, x=x, y=y, damping=2.0, delay_samples=1, directions=8).zwidth_area is None
+    assert np.array_equal(m.zwidth_b, b) and np.isnan(m.zwidth_area[0, 2])
+    for i in (0, 1):
+        one = normal_device(five_bar_device(fb, (x[i], y[0])), m.worst_normal[0, i])
+        want = zwidth_region(one, b, 1, passive=False).area_linear
+        assert m.zwidth_area[0, i] == want and want > 0

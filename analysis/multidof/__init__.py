@@ -98,6 +98,7 @@ from analysis.multidof.workspace import (
     WorkspaceMap,
     WorkspaceMinimum,
     five_bar_device,
+    normal_device,
     workspace_map,
 )
 from analysis.transparency.five_bar import FiveBar
@@ -136,6 +137,7 @@ __all__ = [
     "lth_ratio",
     "lth_stiffness_bound",
     "narrow_brackets",
+    "normal_device",
     "plant_matrices",
     "rigid_drive_device",
     "serial_cable_model",

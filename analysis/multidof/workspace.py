@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from analysis.chain.device import Device
 from analysis.chain.velocity_filter import VelocityFilter
 from analysis.checks import integer, nonnegative
 from analysis.errors import ValidationError
@@ -32,10 +33,12 @@ from analysis.multidof.limits import check_directions, first_crossings, worst_no
 from analysis.multidof.loci import frequency_first_crossings
 from analysis.multidof.loop import loop_parts
 from analysis.multidof.model import RigidCartesianDevice
-from analysis.sampled.terminations import HANDS_OFF, Grasp
+from analysis.sampled.terminations import HANDS_OFF, Grasp, Termination, god_object_wall
+from analysis.sampled.zwidth import zwidth_region
 from analysis.transparency.five_bar import FiveBar
 
-__all__ = ["SINGULAR_RTOL", "METHODS", "five_bar_device", "workspace_map", "WorkspaceMap", "WorkspaceMinimum"]
+__all__ = ["SINGULAR_RTOL", "METHODS", "five_bar_device", "normal_device", "workspace_map", "WorkspaceMap",
+           "WorkspaceMinimum"]
 
 #: A configuration is refused as singular when the Jacobian's smallest singular value is below
 #: this fraction of its largest (the handle loses, or gains an infinitely light, direction).
@@ -84,6 +87,43 @@ def five_bar_device(linkage: FiveBar, position: object, sample_time: float = 1e-
     return RigidCartesianDevice(mass=M, damping=B, sample_time=sample_time)
 
 
+def normal_device(device: RigidCartesianDevice, normal: object) -> Device:
+    """The rigid device seen along a wall normal, as a one-axis chain :class:`~analysis.chain.device.Device`.
+
+    A plane wall leaves the handle free across its normal ``n``, so the mass it pushes is
+    ``m_n = 1 / (n^T M^{-1} n)`` and the damping ``b_n = m_n^2 n^T M^{-1} C M^{-1} n``: the
+    one-axis ``1/(m_n s + b_n)`` that matches the first two terms of the handle's mobility
+    ``n^T (M s + C)^{-1} n`` at high frequency, where the sampled loop's limits are set.  Exact
+    (the plane wall's loop) when ``n`` is a principal direction of both ``M`` and ``C``; an
+    approximation with cross-coupling.
+
+    Parameters
+    ----------
+    device : RigidCartesianDevice
+        The device at the handle.
+    normal : array_like
+        The wall's normal, shape (m,), nonzero.
+
+    Returns
+    -------
+    Device
+        One mass ``m_n`` [kg] with the ground damping ``b_n`` [N s/m], the device's sample time.
+
+    Raises
+    ------
+    ValidationError
+        When the normal is zero, not finite or of the wrong length.
+    """
+    u = np.asarray(normal, dtype=float)
+    if u.shape != (device.mass.shape[0],) or not np.all(np.isfinite(u)) or not np.linalg.norm(u) > 0:
+        raise ValidationError("normal", f"a finite nonzero vector of {device.mass.shape[0]} components", normal)
+    u = u / np.linalg.norm(u)
+    mu = np.linalg.solve(device.mass, u)
+    m_n = 1.0 / float(u @ mu)
+    b_n = max(m_n * m_n * float(mu @ device.damping @ mu), 0.0)
+    return Device(masses=[m_n], ground_dampings=[b_n], sample_time=device.sample_time)
+
+
 @dataclass(frozen=True)
 class WorkspaceMinimum:
     """The design bound: the smallest plane-wall critical stiffness over the workspace.
@@ -125,6 +165,12 @@ class WorkspaceMap:
         The design bound over the workspace, refined at its point.
     directions : int
         Directions of the dense check at each point.
+    zwidth_area : numpy.ndarray or None
+        The 1-DOF Z-width area ``int K_max dB`` [N^2 s/m^2] of the device seen along each
+        point's worst normal (:func:`normal_device`, :func:`analysis.sampled.zwidth_region`
+        over :attr:`zwidth_b`), shape (ny, nx); ``None`` when not asked for.
+    zwidth_b : numpy.ndarray or None
+        The wall dampings [N s/m] of that area, or ``None``.
     """
 
     x: np.ndarray
@@ -135,6 +181,8 @@ class WorkspaceMap:
     worst_normal: np.ndarray
     minimum: WorkspaceMinimum
     directions: int
+    zwidth_area: np.ndarray | None = None
+    zwidth_b: np.ndarray | None = None
 
 
 def _pencils(devices: list[RigidCartesianDevice], shapes: np.ndarray, damping: float, delay_samples: int,
@@ -150,7 +198,8 @@ def _pencils(devices: list[RigidCartesianDevice], shapes: np.ndarray, damping: f
 
 def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, delay_samples: int = 1, *,
                   sample_time: float = 1e-3, grasp: Grasp = HANDS_OFF, velocity_filter: VelocityFilter | None = None,
-                  directions: int = 12, k_range: tuple[float, float] = (1.0, 1e9), method: str = "loci") -> WorkspaceMap:
+                  directions: int = 12, k_range: tuple[float, float] = (1.0, 1e9), method: str = "loci",
+                  zwidth_b: object = None) -> WorkspaceMap:
     """The isotropic and the worst plane-wall critical stiffness over a grid of handle positions.
 
     Parameters
@@ -179,6 +228,10 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
         the geometric scan and bisection of every wall
         (:func:`analysis.multidof.limits.first_crossings`).  Both give the stable end of a
         bracket of relative width 1e-12 of the exact loop.
+    zwidth_b : array_like or None, optional
+        Wall dampings [N s/m] (at least two, increasing) of the third layer: the 1-DOF Z-width
+        area along each point's worst normal (:attr:`WorkspaceMap.zwidth_area`); ``None``
+        (default) leaves it out.  It costs one :func:`analysis.sampled.zwidth_region` a point.
 
     Returns
     -------
@@ -231,5 +284,13 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
     best_k, best_n = (refined.stiffness, refined.normal) if refined.stiffness < k_worst[j, i] else \
         (float(k_worst[j, i]), normal[j, i])
     minimum = WorkspaceMinimum(stiffness=float(best_k), position=np.array([xs[i], ys[j]]), normal=np.asarray(best_n))
+    area, bz = None, None
+    if zwidth_b is not None:
+        term = None if grasp.hands_off else Termination(grasp, god_object_wall())
+        area = np.full(shape, math.nan)
+        for dev, (j, i) in zip(devices, points):
+            region = zwidth_region(normal_device(dev, normal[j, i]), zwidth_b, delay_samples, velocity_filter,
+                                   termination=term, k_range=k_range, passive=False)
+            area[j, i], bz = region.area_linear, region.b
     return WorkspaceMap(x=xs, y=ys, reachable=reachable, k_max=k_iso, worst_stiffness=k_worst, worst_normal=normal,
-                        minimum=minimum, directions=D)
+                        minimum=minimum, directions=D, zwidth_area=area, zwidth_b=bz)
