@@ -20,6 +20,9 @@ from batch_devices import fails_at, nan_at_three, ramp, region_k, rigid, sized
 from analysis import Device
 from analysis.errors import ValidationError
 from analysis.identify import parameter_box
+from analysis.profiles import RenderableSection
+from analysis.profiles.identification import IdentificationSection
+from analysis.profiles.io import bundled_profiles, load_profile
 from analysis.progress import OperationCancelled
 from analysis.sampled import (
     DeviceFailed,
@@ -32,6 +35,7 @@ from analysis.sampled import (
     robust_renderable_space,
     space_volume,
 )
+from analysis.study.renderable import RenderableRequest, robust_box_reason, robust_study
 
 M_GRID = np.array([-0.05, 0.0, 0.05])
 D_GRID = np.array([0.0, 2.0, 8.0])
@@ -248,3 +252,32 @@ def test_cluster_cancel_stops(client: object) -> None:
         intersect_devices(region_k, [rigid()] * 40, client=client, chunk_size=1,
                           progress=lambda d, t: seen.append(d), cancelled=lambda: True)
     assert max(seen) < 40
+
+
+# -- the study layer's robust route (the Renderable space tab's overlay) --------------------------------
+def test_the_study_request_takes_the_profiles_identified_box() -> None:
+    intervals = {"masses[0]": (0.4, 0.6), "ground_dampings[0]": (1.0, 3.0)}
+    plain = load_profile(bundled_profiles()["rigid"]).replace(
+        renderable=RenderableSection(mass_points=3, damping_points=3))
+    assert "no identified intervals" in robust_box_reason(plain)
+    assert RenderableRequest.of(plain, robust="corners").robust is None
+    boxed = plain.replace(identification=IdentificationSection(intervals))
+    assert robust_box_reason(boxed) is None
+    assert RenderableRequest.of(boxed).robust is None  # off by default: the request is the device's own
+    corners = RenderableRequest.of(boxed, robust="corners")
+    assert corners == RenderableRequest.of(boxed, robust="corners", samples=99)  # the corners have no count
+    assert corners != RenderableRequest.of(boxed, robust="samples", samples=5)
+    r = robust_study(corners)
+    ref = robust_renderable_space(box_corners(parameter_box(boxed.device, intervals)), corners.mass, corners.damping,
+                                  corners.delay_samples, corners.velocity_filter, corners.acceleration,
+                                  corners.qualities, settings=corners.settings, workers=1)
+    assert r.devices == 4 and np.array_equal(r.k_max, ref.k_max) and r.volume == ref.volume
+    assert corners.robust.label(boxed.device) == "4 corners of the identified box"
+    open_box = plain.replace(identification=IdentificationSection({"masses[0]": (0.4, math.inf)}))
+    assert "masses[0] open" in robust_box_reason(open_box)
+    with pytest.raises(ValidationError) as err:
+        RenderableRequest.of(boxed, robust="everywhere")
+    assert err.value.field == "robust"
+    with pytest.raises(ValidationError) as err:
+        robust_study(RenderableRequest.of(boxed))
+    assert err.value.field == "robust"

@@ -13,6 +13,14 @@ of the space's volume, ``u(B) = sign(B) log10(1 + |B|/b_ref)`` (:func:`damping_a
 1 N s/m), so that a heat map's pixels are equal on that axis and negative dampings get as many
 values as positive ones.  The rendered environment itself (M, B, K) is not part of the request:
 moving it recomputes nothing.
+
+The robust space (issue 24: "the robust-space overlay when a box or batch is given"): when the
+profile's ``identification`` section bounds a parameter box (:func:`robust_box_reason` says why
+not), ``RenderableRequest.of(profile, robust="corners")`` or ``robust="samples"`` adds a
+:class:`RobustBox` (the box's intervals, its corners or N seeded samples) and :func:`robust_study`
+computes the space every device of that batch has
+(:func:`analysis.sampled.robust_renderable_space` on the request's grid, qualities and settings, in
+the calling thread: ``workers=1``, so that the GUI's worker thread starts no process pool).
 """
 
 from __future__ import annotations
@@ -22,6 +30,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from analysis.chain.device import Device
+from analysis.errors import ValidationError
+from analysis.identify import open_intervals, parameter_box
 from analysis.chain.velocity_filter import VelocityFilter
 from analysis.profiles.model import Profile
 from analysis.profiles.renderable import RenderableSection
@@ -36,15 +46,20 @@ from analysis.sampled import (
     MWidth,
     QualitySettings,
     RenderableSpace,
+    RobustRenderableSpace,
+    box_corners,
+    box_samples,
     m_width,
     renderable_space,
+    robust_renderable_space,
 )
 from analysis.sampled.terminations import Grasp
 from analysis.study.displays import profile_filter
 from analysis.study.requests import delays
 
-__all__ = ["GRASPS", "QUALITY_LABELS", "RenderableRequest", "RenderableStudy", "renderable_section",
-           "damping_axis", "damping_from_axis", "renderable_study", "k_max_at", "environment_edits"]
+__all__ = ["GRASPS", "QUALITY_LABELS", "ROBUST_KINDS", "ROBUST_SAMPLES", "RenderableRequest", "RenderableStudy",
+           "RobustBox", "renderable_section", "damping_axis", "damping_from_axis", "renderable_study", "k_max_at",
+           "environment_edits", "robust_box_reason", "robust_study"]
 
 #: The grasp sets of the ``stable`` quality by name (the keys of :data:`analysis.profiles.schema.GRASP_SETS`).
 GRASPS: dict[str, tuple[Grasp, ...]] = {"hands_off": (HANDS_OFF,), "firm": (HANDS_OFF, FIRM_GRASP),
@@ -56,6 +71,10 @@ QUALITY_LABELS = {"all": "all qualities", "stable": "stable", "passive": "passiv
 assert set(QUALITY_LABELS) == {"all", *QUALITIES}
 #: The damping scale of the signed-log axis [N s/m] (QualitySettings.b_ref's default).
 B_REF = QualitySettings().b_ref
+#: How the robust space takes the identified box: not at all, its 2^p corners, or N seeded samples.
+ROBUST_KINDS = {"off": "off", "corners": "the box's corners", "samples": "samples of the box"}
+#: The robust space's default number of samples of the box.
+ROBUST_SAMPLES = 16
 
 
 def renderable_section(profile: Profile) -> RenderableSection:
@@ -112,6 +131,96 @@ def damping_from_axis(u: object, b_ref: float = B_REF) -> np.ndarray:
     return np.sign(u) * b_ref * (10.0 ** np.abs(u) - 1.0)
 
 
+def _closed_intervals(profile: Profile) -> tuple[tuple[str, float, float], ...] | str:
+    """The identification section's intervals as a hashable tuple, or why they bound no box."""
+    sec = profile.identification
+    if sec is None or not sec.intervals:
+        return "the profile has no identified intervals (Identify tab or zwidth identify)"
+    open_keys = open_intervals(sec.intervals, len(profile.device.masses))
+    if open_keys:
+        return f"the data leave {', '.join(open_keys)} open: no box"
+    return tuple((k, float(lo), float(hi)) for k, (lo, hi) in sec.intervals.items())
+
+
+def robust_box_reason(profile: Profile) -> str | None:
+    """Why the profile offers no robust space (``None`` when its identified intervals bound a box).
+
+    Parameters
+    ----------
+    profile : Profile
+        The device profile.
+
+    Returns
+    -------
+    str or None
+        The reason in words, or ``None``.
+    """
+    box = _closed_intervals(profile)
+    return box if isinstance(box, str) else None
+
+
+@dataclass(frozen=True)
+class RobustBox:
+    """A batch of devices from the identified parameter box (module docstring); hashable.
+
+    Attributes
+    ----------
+    intervals : tuple of (str, float, float)
+        The identification section's ``(key, low, high)``, in its order.
+    kind : str
+        ``"corners"`` (the box's ``2^p`` corners) or ``"samples"`` (``samples`` devices drawn by
+        :func:`analysis.sampled.box_samples` with ``seed``).
+    samples : int
+        Number of samples (``kind == "samples"``).
+    seed : int
+        Seed of the samples: the same seed gives the same devices.
+    """
+
+    intervals: tuple[tuple[str, float, float], ...]
+    kind: str
+    samples: int = ROBUST_SAMPLES
+    seed: int = 0
+
+    def devices(self, device: Device) -> list[Device]:
+        """The batch: ``device`` with the boxed parameters at the corners or samples of the box.
+
+        Parameters
+        ----------
+        device : Device
+            The profile's device (the parameters the box leaves out).
+
+        Returns
+        -------
+        list of Device
+            The devices, corners in binary order or samples in draw order.
+
+        Raises
+        ------
+        ValidationError
+            When the box is refused (:func:`analysis.identify.parameter_box`) or too large.
+        """
+        box = parameter_box(device, {k: (lo, hi) for k, lo, hi in self.intervals})
+        return box_corners(box) if self.kind == "corners" else box_samples(box, self.samples, self.seed)
+
+    def label(self, device: Device) -> str:
+        """``"4 corners of the identified box"`` or ``"16 samples of the identified box"``.
+
+        Parameters
+        ----------
+        device : Device
+            The profile's device.
+
+        Returns
+        -------
+        str
+            The batch in words.
+        """
+        if self.kind == "corners":
+            dim = parameter_box(device, {k: (lo, hi) for k, lo, hi in self.intervals}).dim
+            return f"{2 ** dim} corners of the identified box"
+        return f"{self.samples} samples of the identified box"
+
+
 @dataclass(frozen=True)
 class RenderableRequest:
     """What the space and the M-width depend on (hashable: the graph's cache key).
@@ -135,6 +244,8 @@ class RenderableRequest:
         The grid's virtual masses [kg].
     damping : tuple of float
         The grid's virtual dampings [N s/m].
+    robust : RobustBox or None
+        The batch of the robust space (:func:`robust_study`), ``None`` for none.
     """
 
     device: Device
@@ -145,21 +256,37 @@ class RenderableRequest:
     settings: QualitySettings
     mass: tuple[float, ...]
     damping: tuple[float, ...]
+    robust: RobustBox | None = None
 
     @classmethod
-    def of(cls, profile: Profile) -> RenderableRequest:
+    def of(cls, profile: Profile, robust: str = "off", samples: int = ROBUST_SAMPLES, seed: int = 0) -> RenderableRequest:
         """The request of ``profile``'s device, filter, delay and renderable section.
 
         Parameters
         ----------
         profile : Profile
             The device profile.
+        robust : str, optional
+            A key of :data:`ROBUST_KINDS`: ``"off"`` (default), ``"corners"`` or ``"samples"`` of the
+            identified box; without a box (:func:`robust_box_reason`) the request has none.
+        samples : int, optional
+            Number of samples for ``robust="samples"``.
+        seed : int, optional
+            Seed of the samples.
 
         Returns
         -------
         RenderableRequest
             The request.
+
+        Raises
+        ------
+        ValidationError
+            When ``robust`` is not a key of :data:`ROBUST_KINDS`.
         """
+        if robust not in ROBUST_KINDS:
+            raise ValidationError("robust", f"one of {', '.join(ROBUST_KINDS)}", robust)
+        box = None if robust == "off" else _closed_intervals(profile)
         sec = renderable_section(profile)
         settings = QualitySettings(grasps=GRASPS[sec.grasps], band=(sec.band_low, sec.band_high),
                                    tolerance=sec.tolerance, encoder_resolution=sec.quiet_resolution,
@@ -169,8 +296,12 @@ class RenderableRequest:
         damping = damping_from_axis(u)
         damping[0], damping[-1] = sec.damping_min, sec.damping_max  # the ends exactly as given
         d, implementation = delays(profile)
+        drawn = robust == "samples"  # the corners have no count or seed: changing them recomputes nothing
+        batch = (RobustBox(box, robust, int(samples) if drawn else 0, int(seed) if drawn else 0)
+                 if isinstance(box, tuple) else None)
         return cls(profile.device, profile_filter(profile), int(d) + int(implementation), sec.acceleration,
-                   tuple(sec.qualities), settings, tuple(float(m) for m in mass), tuple(float(b) for b in damping))
+                   tuple(sec.qualities), settings, tuple(float(m) for m in mass), tuple(float(b) for b in damping),
+                   batch)
 
 
 @dataclass(frozen=True)
@@ -233,13 +364,50 @@ def renderable_study(request: RenderableRequest | Profile, *, progress: Progress
     return RenderableStudy(space, width)
 
 
-def k_max_at(space: RenderableSpace, mass: float, damping: float, quality: str = "all") -> float:
+@none_if_cancelled
+def robust_study(request: RenderableRequest, *, progress: Progress | None = None,
+                 cancelled: Cancelled | None = None) -> RobustRenderableSpace | None:
+    """The space every device of the request's batch has (module docstring), in this thread.
+
+    Progress counts devices; ``None`` once cancelled.
+
+    Parameters
+    ----------
+    request : RenderableRequest
+        A request with a batch (``RenderableRequest.of(profile, robust="corners")``).
+    progress : Progress or None, optional
+        Called as ``progress(done, total)`` while it runs.
+    cancelled : Cancelled or None, optional
+        Polled as ``cancelled() -> bool`` between devices; once true it returns ``None``.
+
+    Returns
+    -------
+    RobustRenderableSpace or None
+        The smallest ``k_max`` over the batch (and per quality), its binding device and volume, on
+        the request's grid; ``None`` once cancelled.
+
+    Raises
+    ------
+    ValidationError
+        When the request has no batch (``robust``) or the box is refused.
+    DeviceFailed
+        When one device's space fails (named by its index).
+    """
+    if request.robust is None:
+        raise ValidationError("robust", "a batch: RenderableRequest.of(profile, robust='corners' or 'samples')", None)
+    devices = request.robust.devices(request.device)
+    return robust_renderable_space(devices, request.mass, request.damping, request.delay_samples,
+                                   request.velocity_filter, request.acceleration, request.qualities,
+                                   settings=request.settings, workers=1, progress=progress, cancelled=cancelled)
+
+
+def k_max_at(space: RenderableSpace | RobustRenderableSpace, mass: float, damping: float, quality: str = "all") -> float:
     """``k_max`` [N/m] of the grid point nearest ``(M, B)`` (nearest on the signed-log damping axis).
 
     Parameters
     ----------
-    space : RenderableSpace
-        The space.
+    space : RenderableSpace or RobustRenderableSpace
+        The space (a device's or a batch's).
     mass : float
         Virtual mass M [kg].
     damping : float

@@ -7,7 +7,10 @@
   the qualities.  One contour per quality: the slice of that quality's space at the rendered
   stiffness K, i.e. the edge of the (M, B) where K is renderable with it (at K = 0, the edge of
   where any K is).  The rendered environment (M, B) is a star; a left click emits
-  :attr:`~app.views.pickable.PickablePlotView.pointPicked` ``(M, B)``.
+  :attr:`~app.views.pickable.PickablePlotView.pointPicked` ``(M, B)``.  With a robust space (the
+  batch of an identified parameter box, :func:`analysis.study.renderable.robust_study`), its edge at
+  the rendered K is a dashed contour and the (M, B) that this device renders at K but not every
+  device of the box are hatched, with their own legend entry.
 * :class:`MWidthView` -- the M-width: the interval of M renderable at B = K = 0, one bar per quality
   and one for all of them, with the rendered M.
 
@@ -17,6 +20,7 @@ Both only draw what :func:`analysis.study.renderable_study` computed.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pyqtgraph as pg
@@ -29,7 +33,11 @@ from app.views.base import Axis, PlotView, Series, plain
 from app.views.marker import design_marker, move_marker
 from app.views.pickable import PickablePlotView
 
-__all__ = ["RenderableSpaceView", "MWidthView", "SignedLogAxis", "QUALITY_COLORS", "NONE_COLOR"]
+if TYPE_CHECKING:
+    from analysis.sampled import RobustRenderableSpace
+
+__all__ = ["RenderableSpaceView", "MWidthView", "SignedLogAxis", "QUALITY_COLORS", "NONE_COLOR", "ROBUST_COLOR",
+           "HATCH_PIXELS"]
 
 #: One colour per quality's contour and bar (dark enough on the viridis map's light end, with a halo).
 QUALITY_COLORS = {"all": "#7048e8", "stable": "#e03131", "passive": "#f08c00", "accurate": "#d6336c",
@@ -37,6 +45,10 @@ QUALITY_COLORS = {"all": "#7048e8", "stable": "#e03131", "passive": "#f08c00", "
 #: Where no K has the qualities (K_max = 0).
 NONE_COLOR = (150, 150, 150, 255)
 _HALO = "#ffffff"
+#: The robust space's contour and hatching (dark on the whole viridis map, with a white halo).
+ROBUST_COLOR = "#212529"
+#: The hatching's period in image pixels per grid cell (a diagonal line every this many pixels).
+HATCH_PIXELS = 8
 M_AXIS, B_AXIS, K_AXIS = Axis("M", "kg"), Axis("B", "N·s/m"), Axis("K_max", "N/m")
 
 
@@ -92,12 +104,26 @@ class RenderableSpaceView(PickablePlotView):
             self.contours[q] = (halo, line)
             self.legend_lines[q] = pg.PlotDataItem([], [], pen=pg.mkPen(color, width=2),
                                                    shadowPen=pg.mkPen(_HALO, width=4))
+        self.hatch = pg.ImageItem(axisOrder="row-major")  # the robust overlay: lost to the box
+        self.hatch.setZValue(-9)
+        self.plot.addItem(self.hatch)
+        dashed = pg.mkPen(ROBUST_COLOR, width=2, style=Qt.PenStyle.DashLine)
+        self.robust_contour = (pg.IsocurveItem(pen=pg.mkPen(_HALO, width=4), axisOrder="row-major"),
+                               pg.IsocurveItem(pen=dashed, axisOrder="row-major"))
+        for item in self.robust_contour:
+            item.setParentItem(self.image)
+        self.robust_legend = pg.PlotDataItem([], [], pen=dashed, shadowPen=pg.mkPen(_HALO, width=4))
         self.point = design_marker("rendered (M, B)", "star", 16, "#ffd43b", pg.mkPen("k", width=1.2))
         self.plot.addItem(self.point)
         self.legend_outside(3)
         self.study: RenderableStudy | None = None
         self.quality = "all"
         self.stiffness = 0.0
+        self.robust: RobustRenderableSpace | None = None
+        self.robust_label = ""
+        self.robust_drawn = False
+        self._drawn: tuple[str, ...] = ()
+        self._rect = QRectF()
         self.plot_widget.setMinimumSize(220, 180)
 
     def set_busy(self, busy: bool, text: str = "") -> None:
@@ -121,6 +147,7 @@ class RenderableSpaceView(PickablePlotView):
             for halo, line in self.contours.values():
                 halo.setData(None)
                 line.setData(None)
+            self._draw_robust()
             self._sync_legend(())
             self.set_warning([])
             self.bump()
@@ -138,6 +165,7 @@ class RenderableSpaceView(PickablePlotView):
         self.empty.setImage(np.full(logk.shape + (4,), NONE_COLOR, dtype=np.ubyte), autoLevels=False, levels=(0, 255))
         for item in (self.image, self.empty):
             item.setRect(rect)
+        self._rect = rect
         level = math.log10(max(self.stiffness, sp.settings.k_range[0]))
         drawn = ("all", *sp.qualities) if len(sp.qualities) > 1 else sp.qualities
         for q, (halo, line) in self.contours.items():
@@ -145,6 +173,7 @@ class RenderableSpaceView(PickablePlotView):
             data = None if k is None else np.where(np.asarray(k).T > 0, _log_k(k).T, level - 10.0)
             for item in (halo, line):
                 item.setData(data, level)
+        self._draw_robust()
         self._sync_legend(drawn)
         notes = []
         if not finite.size:
@@ -153,13 +182,68 @@ class RenderableSpaceView(PickablePlotView):
         self.plot.getViewBox().autoRange(padding=0.0)
         self.bump()
 
+    def _where(self) -> str:
+        return "K" if self.stiffness <= 0 else f"K = {format_number(self.stiffness)} N/m"
+
     def _sync_legend(self, drawn: tuple[str, ...]) -> None:
-        for q, item in self.legend_lines.items():
+        self._drawn = tuple(drawn)
+        for item in (*self.legend_lines.values(), self.robust_legend):
             if self.legend.getLabel(item) is not None:
                 self.legend.removeItem(item)
         for q in drawn:
-            where = "K" if self.stiffness <= 0 else f"K = {format_number(self.stiffness)} N/m"
-            self.legend.addItem(self.legend_lines[q], f"{QUALITY_LABELS[q]}: {where} renderable")
+            self.legend.addItem(self.legend_lines[q], f"{QUALITY_LABELS[q]}: {self._where()} renderable")
+        if self.robust_drawn:
+            self.legend.addItem(self.robust_legend, f"robust over {self.robust_label}: {self._where()} renderable "
+                                "by every device (hatched: by this device only)")
+
+    # -- the robust overlay ------------------------------------------------------------------------
+    def update_robust(self, robust: RobustRenderableSpace | None, label: str = "") -> None:
+        """Overlay the robust space ``robust`` (``label``: its batch in words) at the rendered K; ``None``
+        removes it.  Drawn only on the grid of the space shown (a stale batch on another grid is not)."""
+        if robust is self.robust and label == self.robust_label:
+            return
+        self.robust, self.robust_label = robust, label
+        self._draw_robust()
+        self._sync_legend(self._drawn)
+        self.bump()
+
+    def robust_shown(self) -> np.ndarray | None:
+        """The robust ``K_max`` drawn (the selected quality's, or all of them), or ``None``."""
+        r = self.robust
+        if not self.robust_drawn or r is None:
+            return None
+        return r.k_max if self.quality == "all" else r.by_quality[self.quality]
+
+    def hatched(self) -> np.ndarray | None:
+        """Where the hatching is, shape (NM, NB): this device renders the rendered K, the box does not."""
+        robust, own = self.robust_shown(), self.shown()
+        if robust is None or own is None:
+            return None
+        level = max(self.stiffness, self.study.space.settings.k_range[0])
+        return (np.asarray(own) >= level) & (np.asarray(robust) < level)
+
+    def _draw_robust(self) -> None:
+        s, r = self.study, self.robust
+        self.robust_drawn = bool(s is not None and r is not None and np.array_equal(r.mass, s.space.mass)
+                                 and np.array_equal(r.damping, s.space.damping)
+                                 and (self.quality == "all" or self.quality in r.by_quality))
+        if not self.robust_drawn:
+            self.hatch.clear()
+            for item in self.robust_contour:
+                item.setData(None)
+            return
+        k = self.robust_shown()
+        level = math.log10(max(self.stiffness, s.space.settings.k_range[0]))
+        data = np.where(np.asarray(k).T > 0, _log_k(k).T, level - 10.0)
+        for item in self.robust_contour:
+            item.setData(data, level)
+        mask = np.kron(self.hatched().T, np.ones((HATCH_PIXELS, HATCH_PIXELS), dtype=bool))
+        rows, cols = np.indices(mask.shape)
+        stripe = mask & ((rows + cols) % HATCH_PIXELS < 2)
+        rgba = np.zeros(mask.shape + (4,), dtype=np.ubyte)
+        rgba[stripe] = (33, 37, 41, 200)
+        self.hatch.setImage(rgba, autoLevels=False, levels=(0, 255))
+        self.hatch.setRect(self._rect)
 
     def update_point(self, mass: float, damping: float) -> None:
         """The rendered environment's (M, B)."""
@@ -185,8 +269,14 @@ class RenderableSpaceView(PickablePlotView):
         if k is None:
             return []
         sp = self.study.space
-        return [Series(f"K_max at M = {plain(float(mv))} kg ({QUALITY_LABELS[self.quality]})", B_AXIS, K_AXIS,
-                       np.asarray(sp.damping, float), np.asarray(k[i], float)) for i, mv in enumerate(sp.mass)]
+        out = [Series(f"K_max at M = {plain(float(mv))} kg ({QUALITY_LABELS[self.quality]})", B_AXIS, K_AXIS,
+                      np.asarray(sp.damping, float), np.asarray(k[i], float)) for i, mv in enumerate(sp.mass)]
+        robust = self.robust_shown()
+        if robust is not None:
+            out += [Series(f"robust K_max at M = {plain(float(mv))} kg ({QUALITY_LABELS[self.quality]}, "
+                           f"{self.robust_label})", B_AXIS, K_AXIS, np.asarray(sp.damping, float),
+                           np.asarray(robust[i], float)) for i, mv in enumerate(sp.mass)]
+        return out
 
 
 class MWidthView(PlotView):

@@ -9,14 +9,18 @@ import numpy as np
 import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt
 
+from analysis.identify import parameter_box
 from analysis.profiles import RenderableSection
-from analysis.sampled import m_width
+from analysis.profiles.identification import IdentificationSection
+from analysis.sampled import box_corners, box_samples, m_width, robust_renderable_space
 from analysis.study import RenderableRequest, damping_axis, format_number, renderable_study
-from app.core.nodes_renderable import RENDERABLE_NODE
+from app.core.nodes_renderable import RENDERABLE_NODE, ROBUST_NODE
 from app.tabs.renderable_tab import RenderableTab
 
 #: a coarse grid: these tests check the tab, not the resolution
 COARSE = RenderableSection(mass_points=9, damping_points=11, qualities=("stable", "passive"))
+#: an identified box of the HBFD: the handle's mass and the motor's damping to ground (4 corners)
+INTERVALS = {"masses[0]": (0.1, 0.4), "ground_dampings[3]": (1.0, 10.0)}
 
 
 @pytest.fixture
@@ -128,3 +132,66 @@ def test_screenshots_light_and_dark(rwin, qtbot, tmp_path):
         assert image.width() == 1280 and image.height() == 800
         assert distinct_colours(image) > 20 and coloured_fraction(image) > 0.02
     rwin.theme.set_theme("light")
+
+
+@pytest.fixture
+def boxwin(qtbot, settings, hbfd_profile):
+    from conftest import _main_window
+
+    profile = hbfd_profile.replace(renderable=COARSE, identification=IdentificationSection(INTERVALS))
+    yield from _main_window(qtbot, settings, profile)
+
+
+def _robust_drawn(win, tab) -> bool:
+    return win.graph.is_fresh(ROBUST_NODE) and tab.space_view.robust_drawn
+
+
+def test_without_a_box_the_robust_overlay_is_not_offered(rwin, qtbot):
+    tab = show(rwin, qtbot)
+    assert not tab.robust.isEnabled() and "no identified intervals" in tab.robust.toolTip()
+    tab.set_robust("corners")
+    assert rwin.graph.calls(ROBUST_NODE) == 0 and tab.space_view.robust is None
+    assert tab.space_view.legend.getLabel(tab.space_view.robust_legend) is None
+
+
+def test_the_robust_overlay_over_the_identified_box(boxwin, qtbot, tmp_path):
+    tab = show(boxwin, qtbot)
+    view = tab.space_view
+    assert tab.robust.isEnabled() and boxwin.graph.calls(ROBUST_NODE) == 0  # off: nothing computed
+    own = view.shown()
+    k = float(np.median(own[own > 0]))  # a rendered K inside the space: the box loses some (M, B)
+    assert tab.panel.write("virtual_stiffness", k) is None
+    calls = boxwin.graph.calls(RENDERABLE_NODE)
+    tab.set_robust("corners")
+    qtbot.waitUntil(lambda: _robust_drawn(boxwin, tab), timeout=120000)
+    req = RenderableRequest.of(boxwin.model.profile)
+    corners = box_corners(parameter_box(boxwin.model.profile.device, INTERVALS))
+    ref = robust_renderable_space(corners, req.mass, req.damping, req.delay_samples, req.velocity_filter,
+                                  req.acceleration, req.qualities, settings=req.settings, workers=1)
+    robust = view.robust
+    assert robust.devices == 4
+    np.testing.assert_array_equal(robust.k_max, ref.k_max)
+    assert boxwin.graph.calls(RENDERABLE_NODE) == calls  # the device's own space is not recomputed
+    # hatched: this device renders K there, some device of the box does not
+    hatched = view.hatched()
+    assert np.array_equal(hatched, (own >= k) & (ref.k_max < k))
+    assert hatched.any() and not hatched.all()
+    assert "4 corners of the identified box" in view.legend.getLabel(view.robust_legend).text
+    assert f"volume {format_number(ref.volume)} kg·decades²" in tab.summary.text()
+    assert ref.volume < view.study.space.volume
+    image = boxwin.grab().toImage()
+    image.save(os.path.join(os.environ.get("ZWIDTH_SCREENSHOTS") or str(tmp_path), "renderable_robust.png"))
+    # one quality: the overlay follows the map's quality
+    tab.select_quality("passive")
+    np.testing.assert_array_equal(view.robust_shown(), ref.by_quality["passive"])
+    # samples of the box, then off
+    tab.set_robust("samples", 3)
+    qtbot.waitUntil(lambda: _robust_drawn(boxwin, tab) and view.robust.devices == 3, timeout=120000)
+    drawn = box_samples(parameter_box(boxwin.model.profile.device, INTERVALS), 3, seed=0)
+    np.testing.assert_array_equal(view.robust.k_max, robust_renderable_space(
+        drawn, req.mass, req.damping, req.delay_samples, req.velocity_filter, req.acceleration, req.qualities,
+        settings=req.settings, workers=1).k_max)
+    tab.set_robust("off")
+    assert not view.robust_drawn and view.hatched() is None
+    assert view.legend.getLabel(view.robust_legend) is None
+    assert "Robust over" not in tab.summary.text()
