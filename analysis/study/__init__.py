@@ -143,11 +143,14 @@ from .workspace import (
     workspace_study,
 )
 from .identify import (
+    UNUSED_BINS_LABEL,
     BodeData,
     IdentifyResult,
     RobustDesigns,
     RobustRequest,
+    bins_summary,
     bode_data,
+    curves_goodness,
     fit_curves,
     identify_chain,
     load_measurements,
@@ -174,7 +177,7 @@ __all__ = [
     "PAPER_MASS", "default_bc", "derived_wall_settings", "mass_scale", "observer_device_label", "wall_device_label",
     "SUMMARY_VERSION", "design_summary", "format_design", "format_summary", "summarize",
     "BodeData", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "identify_chain", "load_measurements", "parameter_rows",
-    "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements",
+    "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements", "UNUSED_BINS_LABEL", "bins_summary", "curves_goodness",
     "OPTIMUM_CUTOFFS", "ZWidthStudy", "controller_section", "filter_optimum", "noise_options", "optimum_kind",
     "optimum_verdict", "profile_trials", "resolve_trials", "trials_path",
     "region_b", "trial_score", "twoport_limit", "wall_edits", "region_wall", "with_filter", "zwidth_region_result",

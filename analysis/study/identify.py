@@ -9,8 +9,10 @@
   feasible b_c interval for the current m_c (eq. 21) on the admittance display, each with its
   binding device, and whether the current coupling holds for the whole box
   (:attr:`RobustDesigns.holds`, :meth:`RobustDesigns.verdict`);
-* :func:`section_measurements`, :func:`fit_curves` -- the embedded measurements and the
-  profile device's response at their frequencies, for the Bode figure.
+* :func:`section_measurements`, :func:`fit_curves`, :func:`bode_data`, :func:`curves_goodness` --
+  the embedded measurements, the profile device's response at their frequencies, the Bode curves
+  with the informative bins and the goodness of fit (their home is
+  :mod:`analysis.study.identify_curves`; re-exported here).
 
 Numpy and scipy only; never imports Qt.
 """
@@ -20,7 +22,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -31,9 +33,7 @@ from analysis.identify import (
     OrderSelection,
     RobustDamping,
     RobustStiffness,
-    device_response,
     fit_chain,
-    make_measurement,
     open_intervals,
     robust_feasible_damping,
     robust_max_stiffness,
@@ -44,10 +44,18 @@ from analysis.profiles.schema import drop_per_mass
 from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.study.design_limits import BeyondLimit, design_beyond_limits
 from analysis.study.displays import display_kind
+from analysis.study.identify_curves import (  # the Bode curves (re-exported: their home until issue 23)
+    UNUSED_BINS_LABEL,
+    BodeData,
+    bode_data,
+    curves_goodness,
+    fit_curves,
+    section_measurements,
+)
 from analysis.study.measurement_files import MeasurementSpec, read_measurement_files
 from analysis.study.quantities import format_number
 
-__all__ = ["BodeData", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "fit_notes", "identify_chain", "load_measurements", "parameter_rows",
+__all__ = ["BodeData", "UNUSED_BINS_LABEL", "bins_summary", "curves_goodness", "IdentifyResult", "RobustDesigns", "bode_data", "fit_curves", "fit_notes", "identify_chain", "load_measurements", "parameter_rows",
            "parse_fixed", "profile_with_fit", "robust_designs", "section_measurements", "RobustRequest",
            "MAX_MASSES", "FIT_SECONDS", "fit_time_estimate"]
 
@@ -344,6 +352,25 @@ def _measured(m: Measurement) -> str:
     return f"{source}{m.quantity} response, {m.boundary} handle, {_plural(m.size, 'point')}, {timing}"
 
 
+def bins_summary(fit: ChainFit) -> str:
+    """:attr:`ChainFit.bins_summary <analysis.identify.ChainFit.bins_summary>` with each file's name
+    rather than its path: the bins of each measurement fitted, and why the others were left out.
+
+    Parameters
+    ----------
+    fit : ChainFit
+        The fit.
+
+    Returns
+    -------
+    str
+        One line, e.g. ``"a.csv: 1221 of 2047 bins used (by coherence and input power); left out: 826
+        with input power below 0.0001 of its peak"``; empty without bins.
+    """
+    return "; ".join(replace(b, source=None if b.source is None else os.path.basename(b.source)).summary
+                     for b in fit.bins)
+
+
 def fit_notes(fit: ChainFit, measurements: Sequence[Measurement], base: str, base_masses: int,
               dropped: Mapping[str, Sequence[float]] | None = None) -> str:
     """The profile notes of an identified device: what was fitted, to what, and what the base gave.
@@ -385,53 +412,13 @@ def fit_notes(fit: ChainFit, measurements: Sequence[Measurement], base: str, bas
     for path, values in (dropped or {}).items():
         parts.append(f"The base's {path} ({_values(values)}: one value per mass of its chain) was dropped, "
                      f"since the fitted chain has {_plural(d.n, 'mass')}; set it again for this device.")
+    if fit.bins:
+        parts.append(f"Bins: {bins_summary(fit)}.")
+    goodness = fit.goodness
+    if goodness is not None and goodness.passed:  # a failed test is the first warning
+        parts.append(f"Goodness of fit: {goodness.message}.")
     parts += [f"Warning: {w}" for w in fit.warnings]
     return " ".join(parts)
-
-
-def section_measurements(section: IdentificationSection) -> list[Measurement]:
-    """The embedded measurements as :class:`~analysis.identify.Measurement` objects.
-
-    Parameters
-    ----------
-    section : IdentificationSection
-        A profile's identification section.
-
-    Returns
-    -------
-    list of Measurement
-        Its measurements, in order.
-    """
-    return [make_measurement(m.frequency, m.response, m.quantity, m.boundary, m.sample_time, m.delay_samples,
-                             m.coherence, m.source) for m in section.measurements]
-
-
-def fit_curves(profile: Profile) -> list[tuple[Measurement, np.ndarray]]:
-    """Each embedded measurement with the profile device's response at its frequencies.
-
-    Parameters
-    ----------
-    profile : Profile
-        The profile (its device and its identification section).
-
-    Returns
-    -------
-    list of (Measurement, numpy.ndarray)
-        Each measurement with the device's complex response at its frequencies, shape (F,)
-        (``nan`` where the device does not fit the measurement); empty without an
-        identification section.
-    """
-    if profile.identification is None:
-        return []
-    dev = profile.device
-    out = []
-    for m in section_measurements(profile.identification):
-        try:
-            model = device_response(dev, m.frequency, m.quantity, m.boundary, m.sample_time, m.delay_samples)
-        except ValueError:  # the device does not fit this measurement (e.g. a gauge beyond the chain)
-            model = np.full(m.frequency.shape, np.nan + 0j)
-        out.append((m, model))
-    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -602,73 +589,3 @@ def robust_designs(request: RobustRequest | Profile, *, seed: int = 0, progress:
         out = RobustDesigns(False, intervals, None, rd, req.coupling, ok)
     report_progress(progress, 1, 1)
     return out
-
-
-@dataclass(frozen=True, eq=False)
-class BodeData:
-    """Measured and model responses of several measurements, joined with a ``nan`` between them
-    (one curve each for plotting): frequency (rad/s), magnitudes, phases (degrees, unwrapped per
-    measurement), the residual ``|ln(model/measured)|`` and the coherence (``nan`` where none).
-
-    Every array has the same shape (N,): the measurements' frequency points and one ``nan`` between
-    two measurements.
-
-    Attributes
-    ----------
-    w : numpy.ndarray
-        Angular frequencies [rad/s].
-    measured_mag : numpy.ndarray
-        Measured magnitude (m/N for ``actuator``/``handle``, N/N for ``gauge``).
-    model_mag : numpy.ndarray
-        The model's magnitude, in the same unit.
-    measured_phase : numpy.ndarray
-        Measured phase [deg], unwrapped per measurement.
-    model_phase : numpy.ndarray
-        The model's phase [deg], on the measured branch.
-    residual : numpy.ndarray
-        ``|ln(model/measured)|``.
-    coherence : numpy.ndarray
-        Magnitude-squared coherence in [0, 1] (``nan`` where none).
-    """
-
-    w: np.ndarray
-    measured_mag: np.ndarray
-    model_mag: np.ndarray
-    measured_phase: np.ndarray
-    model_phase: np.ndarray
-    residual: np.ndarray
-    coherence: np.ndarray
-
-    @property
-    def has_coherence(self) -> bool:
-        return bool(np.any(np.isfinite(self.coherence)))
-
-
-def bode_data(pairs: Sequence[tuple[Measurement, np.ndarray]]) -> BodeData:
-    """The :class:`BodeData` of ``(measurement, model response)`` pairs (see :func:`fit_curves`).
-
-    Parameters
-    ----------
-    pairs : sequence of (Measurement, numpy.ndarray)
-        Each measurement with the model's complex response at its frequencies, shape (F,).
-
-    Returns
-    -------
-    BodeData
-        The curves joined with a ``nan`` between measurements (empty arrays for no pair).
-    """
-    parts: list[list[np.ndarray]] = [[] for _ in range(7)]
-    for i, (m, model) in enumerate(pairs):
-        h, g = m.response, np.asarray(model, complex)
-        ph_m = np.degrees(np.unwrap(np.angle(h)))
-        with np.errstate(invalid="ignore", divide="ignore"):
-            ph_g = ph_m + np.degrees(np.angle(g / h))  # the model's phase on the measured branch
-            res = np.abs(np.log(g / h))
-        coh = m.coherence if m.coherence is not None else np.full(m.size, np.nan)
-        cols = (m.frequency, np.abs(h), np.abs(g), ph_m, ph_g, res, coh)
-        for part, col in zip(parts, cols):
-            if i:
-                part.append(np.array([np.nan]))
-            part.append(np.asarray(col, float))
-    arrays = [np.concatenate(p) if p else np.array([]) for p in parts]
-    return BodeData(*arrays)

@@ -4,7 +4,12 @@ and the fixed parameters.
 Files are loaded when added (:meth:`IdentifyPanel.load_files`, which the Add button calls after a
 file dialog and tests call directly), each with the quantity, boundary and timing chosen at that
 moment, so that an actuator test with the handle free and a gauge test with the handle clamped can
-be fitted together.  A bad file is refused with the file, row and column named.
+be fitted together.  Each file keeps its own kind: a path may name it as the command line does
+(``g.csv:gauge``, ``c.csv:actuator:clamped``, :func:`analysis.study.measurement_files.parse_measurement_spec`),
+and Apply gives the selected file the quantity, handle and timing shown (:meth:`IdentifyPanel.set_kind`).
+A time series is sampled: unless "sampled, T" is ticked it takes its own time step as the sample
+time, as ``zwidth identify`` does, and its row says so.  A bad file is refused with the file, row
+and column named.
 """
 
 from __future__ import annotations
@@ -33,8 +38,9 @@ from PySide6.QtWidgets import (
 
 from analysis.identify import (BOUNDARIES, MEASURED_QUANTITIES, Measurement, MeasurementError, parameter_keys,
                                parameter_symbol)
+from analysis.study.measurement_files import (SAMPLE_TIME_STEP, LoadedMeasurement, MeasurementSpec,
+                                              parse_measurement_spec, read_measurement_files)
 from analysis.study.quantities import format_number
-from analysis.study import load_measurements
 
 from app.widgets.sci_spin_box import SciSpinBox
 
@@ -63,10 +69,14 @@ class IdentifyPanel(QWidget):
     def __init__(self, sample_time: float, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.measurements: list[Measurement] = []
+        self.paths: list[str] = []  # each measurement's file
         self.files = QListWidget()
         self.files.setMaximumHeight(80)
         self.add_button = QPushButton("Add files…")
         self.remove_button = QPushButton("Remove")
+        self.apply_button = QPushButton("Apply")
+        self.apply_button.setToolTip("Give the selected file the quantity, handle and timing above (each file "
+                                     "keeps its own: e.g. an actuator test and a gauge test fitted together)")
         self.error = QLabel()
         self.error.setObjectName("identifyError")
         self.error.setWordWrap(True)
@@ -77,8 +87,8 @@ class IdentifyPanel(QWidget):
         self.boundary.addItems(list(BOUNDARIES))
         self.sampled = QCheckBox("sampled, T")
         self.sampled.setToolTip("Measured through the controller: force through a zero-order hold, sampled "
-                                "encoder, a delay of d samples (exact ZOH model); unticked: continuous-time "
-                                "(an analyser)")
+                                "encoder, a delay of d samples (exact ZOH model); unticked: an FRF is "
+                                "continuous-time (an analyser) and a time series is sampled at its own time step")
         self.sample_time = QDoubleSpinBox()
         self.sample_time.setDecimals(4)
         self.sample_time.setRange(0.001, 1000.0)
@@ -111,6 +121,7 @@ class IdentifyPanel(QWidget):
         self._layout()
         self.add_button.clicked.connect(self.choose_files)
         self.remove_button.clicked.connect(self.remove_selected)
+        self.apply_button.clicked.connect(self.apply_selected)
         self.masses.valueChanged.connect(self._fill_fixed)
         self.fit_button.clicked.connect(self.fitRequested)
         self.use_button.clicked.connect(self.useRequested)
@@ -121,6 +132,7 @@ class IdentifyPanel(QWidget):
         buttons = QHBoxLayout()
         buttons.addWidget(self.add_button)
         buttons.addWidget(self.remove_button)
+        buttons.addWidget(self.apply_button)
         form = QFormLayout()
         form.addRow("Quantity", self.quantity)
         form.addRow("Handle", self.boundary)
@@ -133,7 +145,8 @@ class IdentifyPanel(QWidget):
         run.addWidget(self.use_button)
         lay = QVBoxLayout(self)
         lay.setContentsMargins(4, 4, 4, 4)
-        title = QLabel("<b>Measurements</b> (FRF or time-series CSV; settings apply to files added next)")
+        title = QLabel("<b>Measurements</b> (FRF or time-series CSV; settings apply to files added next, "
+                       "or to the selected file by Apply)")
         title.setWordWrap(True)
         lay.addWidget(title)
         lay.addLayout(form)
@@ -153,23 +166,57 @@ class IdentifyPanel(QWidget):
             return None, 0
         return self.sample_time.value() * 1e-3, self.delay.value()
 
-    def load_files(self, paths: Sequence[str | os.PathLike]) -> list[str]:
-        """Load ``paths`` with the current settings; returns the error messages (file, row, column)."""
+    def _read(self, spec: MeasurementSpec) -> LoadedMeasurement:
         T, d = self.timing()
+        (loaded,) = read_measurement_files([spec], self.quantity.currentText(), self.boundary.currentText(), T, d,
+                                           step_as_sample_time=True)
+        return loaded
+
+    @staticmethod
+    def _row_text(path: str, loaded: LoadedMeasurement) -> str:
+        m = loaded.measurement
+        timing = "continuous" if m.sample_time is None else f"T = {m.sample_time * 1e3:g} ms, d = {m.delay_samples}"
+        if loaded.sample_time_source == SAMPLE_TIME_STEP:
+            timing += " (the time series' own step)"
+        return f"{os.path.basename(path)} — {m.quantity}, {m.boundary}, {timing}, {m.size} points"
+
+    def load_files(self, paths: Sequence[str | os.PathLike]) -> list[str]:
+        """Load ``paths`` with the current settings; returns the error messages (file, row, column).
+
+        A path may carry its own kind as on the command line, ``FILE:QUANTITY[:BOUNDARY]``; a time
+        series without a ticked sample time is sampled at its own step."""
         errors = []
         for path in paths:
             try:
-                (m,) = load_measurements([path], self.quantity.currentText(), self.boundary.currentText(), T, d)
+                spec = parse_measurement_spec(path)
+                loaded = self._read(spec)
             except (MeasurementError, ValueError, OSError) as err:
                 errors.append(str(err))
                 continue
-            self.measurements.append(m)
-            timing = "continuous" if T is None else f"T = {T * 1e3:g} ms, d = {d}"
-            self.files.addItem(f"{os.path.basename(os.fspath(path))} — {m.quantity}, {m.boundary}, {timing}, "
-                               f"{m.size} points")
+            self.measurements.append(loaded.measurement)
+            self.paths.append(spec.path)
+            self.files.addItem(self._row_text(spec.path, loaded))
         self.error.setText("\n".join(errors))
         self._update_buttons()
         return errors
+
+    def set_kind(self, row: int) -> str | None:
+        """Read file ``row`` again with the quantity, handle and timing shown; the error message, or
+        ``None`` when done (the file keeps its place)."""
+        if not 0 <= row < len(self.measurements):
+            return "no file selected"
+        try:
+            loaded = self._read(MeasurementSpec(self.paths[row]))
+        except (MeasurementError, ValueError, OSError) as err:
+            self.error.setText(str(err))
+            return str(err)
+        self.measurements[row] = loaded.measurement
+        self.files.item(row).setText(self._row_text(self.paths[row], loaded))
+        self.error.setText("")
+        return None
+
+    def apply_selected(self) -> None:
+        self.set_kind(self.files.currentRow())
 
     def choose_files(self) -> None:
         paths, _ = QFileDialog.getOpenFileNames(self, "Add measurements", "", "CSV files (*.csv);;All files (*)")
@@ -181,11 +228,13 @@ class IdentifyPanel(QWidget):
         if 0 <= row < len(self.measurements):
             self.files.takeItem(row)
             del self.measurements[row]
+            del self.paths[row]
         self._update_buttons()
 
     def _update_buttons(self) -> None:
         self.fit_button.setEnabled(bool(self.measurements))
         self.remove_button.setEnabled(bool(self.measurements))
+        self.apply_button.setEnabled(bool(self.measurements))
 
     # -- order and fixed parameters ---------------------------------------------------------------
     def _fill_fixed(self) -> None:

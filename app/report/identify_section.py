@@ -1,7 +1,10 @@
 """The report's identification part (issue 14), when the profile has an ``identification`` section.
 
 :func:`identification_part` (Qt-free, called by :func:`app.report.content.gather`): the
-measurements, the parameter table with the 95 % intervals, and the robust designs (robust largest
+measurements with the bins used of each and why the others were left out, the goodness of fit of
+the profile's device to them (:func:`analysis.study.curves_goodness`: a warning when it fails, and
+the intervals are then labelled "not trustworthy"), the parameter table with the 95 % intervals,
+and the robust designs (robust largest
 k_c at the current b_c against the nominal one, with the binding device; or the robust b_c interval
 on the admittance display), computed by :mod:`analysis.study.identify`.  Its figures (needing Qt)
 are in :mod:`app.report.identify_figures`.
@@ -14,7 +17,8 @@ import re
 from typing import Any
 
 from analysis.profiles import Profile
-from analysis.study import BeyondLimit, RobustDesigns, fit_curves, format_number, robust_designs
+from analysis.identify import Goodness
+from analysis.study import BeyondLimit, RobustDesigns, curves_goodness, fit_curves, format_number, robust_designs
 from app.report.model import Numbers, Part, Row, Section
 
 __all__ = ["identification_part", "parameter_label"]
@@ -38,8 +42,9 @@ def _value(profile: Profile, key: str) -> float:
     return float(getattr(profile.device, match.group(1))[int(match.group(2))])
 
 
-def _rows(profile: Profile, numbers: Numbers) -> tuple[Row, ...]:
+def _rows(profile: Profile, numbers: Numbers, trusted: bool = True) -> tuple[Row, ...]:
     rows = []
+    what = "95&nbsp;% interval" if trusted else "interval (<b class='bad'>not trustworthy</b>)"
     for key, (lo, hi) in profile.identification.intervals.items():
         label, unit = parameter_label(key)
         value = _value(profile, key)
@@ -47,7 +52,7 @@ def _rows(profile: Profile, numbers: Numbers) -> tuple[Row, ...]:
         numbers[f"identify.{key}"] = (value, text)
         numbers[f"identify.{key}.low"] = (lo, format_number(lo))
         numbers[f"identify.{key}.high"] = (hi, format_number(hi))
-        rows.append(Row(f"{label} <code>{html.escape(key)}</code>, 95&nbsp;% interval "
+        rows.append(Row(f"{label} <code>{html.escape(key)}</code>, {what} "
                         f"[{format_number(lo)}, {format_number(hi)}]", "", text, unit))
     return tuple(rows)
 
@@ -93,9 +98,30 @@ def _robust_rows(rd: RobustDesigns | None, numbers: Numbers) -> tuple[tuple[Row,
     return tuple(rows), f"<b class='{cls}'>{verdict}</b>"
 
 
+def _bins_and_goodness(pairs: list, goodness: Goodness | None, numbers: Numbers) -> tuple[str, ...]:
+    """The bins used of each measurement and why (greyed in the figures), and the goodness-of-fit
+    verdict of the profile's device on them."""
+    out = []
+    if pairs:
+        out.append("<b>Bins used</b> (the others are greyed in the figures; an embedded measurement keeps its "
+                   "coherence, not the input power of a time series):")
+        out += [f"&bull;&nbsp;{html.escape(m.bins.summary)}" for m, _ in pairs]
+        numbers["identify.bins_used"] = (sum(m.bins.used for m, _ in pairs), str(sum(m.bins.used for m, _ in pairs)))
+    if goodness is not None:
+        numbers["identify.goodness"] = (goodness.statistic, format_number(goodness.statistic, 3))
+        if goodness.passed:
+            out.append(f"<b class='ok'>Goodness of fit</b> of the profile's device: {html.escape(goodness.message)}.")
+        else:
+            out.append(f"<b class='bad'>Warning: {html.escape(goodness.message)}.</b> The intervals below are "
+                       "not trustworthy.")
+    return tuple(out)
+
+
 def identification_part(profile: Profile) -> Part:
     """The report's sections on the profile's identification (empty without one); results
-    ``identify_curves`` (the measured and model responses) and ``robust``."""
+    ``identify_curves`` (the measured and model responses), ``identify_goodness`` (the
+    goodness-of-fit test of the profile's device on the informative bins, or ``None``) and
+    ``robust``."""
     sec = profile.identification
     if sec is None:
         return Part()
@@ -109,11 +135,16 @@ def identification_part(profile: Profile) -> Part:
            + " The table gives each parameter of the profile's device with its 95&nbsp;% interval "
            "(from the Jacobian or the profile likelihood of the weighted log-response fit, or typed by the "
            "user; &infin; where the measurements do not bound it).")
+    pairs = results["identify_curves"]
+    goodness = curves_goodness(pairs, len(sec.intervals))
+    results["identify_goodness"] = goodness
+    trusted = goodness is None or goodness.passed
     notes: tuple[str, ...] = ()
     if sec.notes:
         notes = ("<b>What the fit said</b> about these measurements:",
                  *(f"&bull;&nbsp;{html.escape(t)}" for t in sec.notes))
-    out = [Section("Identification", (par,), _rows(profile, numbers), notes)]
+    notes += _bins_and_goodness(pairs, goodness, numbers)
+    out = [Section("Identification", (par,), _rows(profile, numbers, trusted), notes)]
     rows, verdict = _robust_rows(results["robust"], numbers)
     if verdict and not rows:  # unbounded intervals: no box, and the reason
         out.append(Section("Designs that hold for the whole parameter box", (

@@ -7,17 +7,25 @@ section in one undo step).  Right: measured against fitted Bode plots with the r
 coherence, the parameter table with intervals, the order table (AIC, BIC, residual for
 n = 1..N) and the robust design over the profile's parameter box with the line that says whether
 the current coupling holds for the whole box (:func:`analysis.study.robust_designs`).
+
+Issue 23: the bins the fit left out are greyed on the plots (:class:`~app.views.bode_view.BodeView`),
+the summary says how many bins of each measurement were used and why
+(:func:`analysis.study.bins_summary`), and the goodness-of-fit verdict stands under
+it (:attr:`goodness`: a warning when the model does not explain the data, and the intervals in the
+parameter table are then labelled "not trustworthy").
 """
 
 from __future__ import annotations
 
+import html
 import os
 from collections.abc import Sequence
 
 from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QScrollArea, QTabWidget, QVBoxLayout, QWidget
 
-from analysis.study import IdentifyResult, RobustDesigns, fit_curves, profile_with_fit
+from analysis.identify import ChainFit
+from analysis.study import IdentifyResult, RobustDesigns, bins_summary, fit_curves, profile_with_fit
 
 from app.core import nodes_identify
 from app.core.compute_graph import ComputeGraph
@@ -31,6 +39,7 @@ from app.widgets.node_progress import NodeProgress
 from analysis.study.citations import ADAMS
 from analysis.study.quantities import format_number
 from app.widgets.citation_note import CitationNote
+from app.widgets.colors import for_theme
 
 __all__ = ["IdentifyTab", "TAB"]
 
@@ -65,6 +74,12 @@ class IdentifyTab(AnalysisTab):
         self.summary.setObjectName("identifySummary")
         self.summary.setWordWrap(True)
         self.summary.setMinimumWidth(0)
+        self.goodness = QLabel()  # the goodness-of-fit verdict of the fit shown (empty before a fit)
+        self.goodness.setObjectName("identifyGoodness")
+        self.goodness.setWordWrap(True)
+        self.goodness.setMinimumWidth(0)
+        self.goodness.setTextFormat(Qt.TextFormat.RichText)
+        self._goodness_text = ""
         self.robust = QLabel()
         self.robust.setObjectName("robustVerdict")
         self.robust.setWordWrap(True)
@@ -92,6 +107,7 @@ class IdentifyTab(AnalysisTab):
         col.addWidget(self.panel, 1)
         col.addWidget(self.fit_progress)
         col.addWidget(self.summary)
+        col.addWidget(self.goodness)
         scroll = QScrollArea()
         scroll.setWidget(left)
         scroll.setWidgetResizable(True)
@@ -137,6 +153,7 @@ class IdentifyTab(AnalysisTab):
         super().apply_theme(dark)
         if self.is_built():
             self.show_placeholders()  # the message in the theme's text colour
+            self.goodness.setText(for_theme(self._goodness_text, dark))
 
     # -- fitting ---------------------------------------------------------------------------------
     def load_files(self, paths: Sequence[str | os.PathLike]) -> list[str]:
@@ -179,11 +196,29 @@ class IdentifyTab(AnalysisTab):
         notes = [f"Residual {format_number(fit.residual, 3)} (RMS of the weighted log-response), "
                  f"AIC {format_number(fit.aic)}, BIC {format_number(fit.bic)}"
                  + ("" if fit.converged else " — did NOT converge")]
-        notes += list(fit.warnings)  # the non-identifiable keys, grouped by what would fix them, among them
+        if fit.bins:
+            notes.append(f"Bins: {bins_summary(fit)}")
+        notes += [w for w in fit.warnings  # the non-identifiable keys, grouped by what would fix them, among them
+                  if fit.goodness is None or w != fit.goodness.message]  # (that one is the verdict below)
         self.summary.setText("\n".join(notes))
+        self.show_goodness(fit)
         self.panel.use_button.setEnabled(True)
         self.show_placeholders()
         self.fitted.emit()
+
+    def show_goodness(self, fit: ChainFit | None) -> None:
+        """The goodness-of-fit verdict of ``fit``: a warning when the model does not explain the data
+        (its intervals are then not trustworthy), a plain line when it does."""
+        g = None if fit is None else fit.goodness
+        if g is None:
+            text = ""
+        elif g.passed:
+            text = f"<span style='color:#2b8a3e'>Goodness of fit: {html.escape(g.message)}.</span>"
+        else:
+            text = f"<b style='color:#c92a2a'>Warning: {html.escape(g.message)}.</b>"
+        self._goodness_text = text
+        self.goodness.setText(for_theme(text, self.dark))
+        self.goodness.setVisible(bool(text))
 
     @Slot()
     def use_device(self) -> str | None:

@@ -6,10 +6,16 @@ several measurements joined by a gap.  The magnitude has one measured and one fi
 measured quantity, each quantity in its own colour and named with its unit (an actuator's x/F is
 in m/N, a gauge's F_g/F in N/N: one axis unit for both would be wrong for one of them); phase and
 residual are dimensionless and keep one measured and one fitted curve.
+
+The bins a fit leaves out (:attr:`analysis.identify.Measurement.informative`: coherence or input
+power below the analysis module's thresholds) are drawn apart, greyed, on each plot, with their
+own legend entry (:data:`analysis.study.UNUSED_BINS_LABEL`, key :data:`UNUSED_KEY`); the measured
+curves hold the fitted bins only.  The plots have that entry only while such bins are drawn.
 """
 
 from __future__ import annotations
 
+import html
 import math
 from collections.abc import Mapping, Sequence
 
@@ -19,13 +25,13 @@ from PySide6.QtGui import QResizeEvent
 from PySide6.QtWidgets import QAbstractItemView, QGridLayout, QHeaderView, QTableWidget, QTableWidgetItem, QWidget
 
 from analysis.identify import ChainFit, Measurement, OrderSelection, parameter_symbol
-from analysis.study import BodeData, bode_data, format_number, parameter_rows
+from analysis.study import UNUSED_BINS_LABEL, BodeData, bode_data, format_number, parameter_rows
 
 from app.views.base import PlotView, rich_label
 from app.views.curves_plot import CurvesPlot
 
 __all__ = ["BodeView", "ParameterTable", "OrderTable", "PARAMETER_COLUMNS", "ORDER_COLUMNS", "unit_of",
-           "MAGNITUDE_QUANTITIES", "magnitude_keys"]
+           "MAGNITUDE_QUANTITIES", "magnitude_keys", "UNUSED_KEY", "NOT_TRUSTWORTHY"]
 
 #: Each measured quantity's response symbol, unit and colour (a palette key; its pale variant
 #: draws the measurement, the full colour the fitted model).
@@ -34,6 +40,10 @@ MAGNITUDE_QUANTITIES = {"actuator": ("x/F", "m/N", "a"), "handle": ("x_0/F", "m/
 
 PARAMETER_COLUMNS = ("parameter", "unit", "value", "std. error", "95 % low", "95 % high", "interval", "note")
 ORDER_COLUMNS = ("n", "AIC", "BIC", "residual", "")
+#: The curve key of the bins the fit left out, greyed on each plot.
+UNUSED_KEY = "not used"
+#: How the parameter table labels an interval when the fit fails the goodness-of-fit test.
+NOT_TRUSTWORTHY = "not trustworthy"
 
 
 class BodeView(QWidget):
@@ -84,15 +94,35 @@ class BodeView(QWidget):
         self._show_quantities(tuple(magnitudes))
         for q, part in magnitudes.items():
             measured, fitted = magnitude_keys(q)
-            self.magnitude.set_curve(measured, part.w, part.measured_mag, gaps=True)
+            self.magnitude.set_curve(measured, part.w, part.where_used(part.measured_mag), gaps=True)
             self.magnitude.set_curve(fitted, part.w, part.model_mag, gaps=True)
-        self.phase.set_curve("measured", data.w, data.measured_phase, gaps=True)
+        self.phase.set_curve("measured", data.w, data.where_used(data.measured_phase), gaps=True)
         self.phase.set_curve("fitted", data.w, data.model_phase, gaps=True)
-        self.residual.set_curve("residual", data.w, data.residual, gaps=True)
+        self.residual.set_curve("residual", data.w, data.where_used(data.residual), gaps=True)
         coh = data.coherence if data.has_coherence else np.array([])
         self.residual.set_curve("coherence", data.w[: coh.size], coh, gaps=True)
+        self._show_unused(data, magnitudes)
         for v in self.plot_views():
             v.bump()
+
+    def _show_unused(self, data: BodeData, magnitudes: Mapping[str, BodeData]) -> None:
+        """The bins the fit left out, greyed, on each plot (the entry only while there are some)."""
+        unused = data.has_unused
+        for view in self.plot_views():
+            if not unused:
+                view.remove_curve(UNUSED_KEY)
+            elif UNUSED_KEY not in view.items:
+                view.add_curve(UNUSED_KEY, html.escape(UNUSED_BINS_LABEL), "muted", 2.0, Qt.PenStyle.DotLine,  # rich text
+                               export_name=UNUSED_BINS_LABEL)
+        if not unused:
+            return
+        # the magnitudes of every quantity on one curve (one axis holds them all), gaps between them
+        w = np.concatenate([np.append(part.w, np.nan) for part in magnitudes.values()])
+        mag = np.concatenate([np.append(part.where_used(part.measured_mag, False), np.nan)
+                              for part in magnitudes.values()])
+        self.magnitude.set_curve(UNUSED_KEY, w, mag, gaps=True)
+        self.phase.set_curve(UNUSED_KEY, data.w, data.where_used(data.measured_phase, False), gaps=True)
+        self.residual.set_curve(UNUSED_KEY, data.w, data.where_used(data.residual, False), gaps=True)
 
     def show_pairs(self, pairs: Sequence[tuple[Measurement, np.ndarray]]) -> None:
         """Draw ``(measurement, model response)`` pairs: each measured quantity's magnitude apart."""
@@ -167,6 +197,7 @@ class ParameterTable(_Table):
     behind a scroll bar (:meth:`fit_columns`)."""
 
     NUMBER_COLUMNS = (2, 3, 4, 5)
+    INTERVAL_COLUMN = 6
     NOTE_COLUMN = 7
 
     def __init__(self, parent: QWidget | None = None) -> None:
@@ -205,16 +236,26 @@ class ParameterTable(_Table):
         self.fit_columns()
 
     def show_fit(self, fit: ChainFit | None) -> None:
+        """One row per parameter of ``fit``; when the fit fails the goodness-of-fit test
+        (:attr:`~analysis.identify.ChainFit.intervals_trustworthy`), the interval column of every
+        fitted parameter says :data:`NOT_TRUSTWORTHY` (the test's message in its tooltip)."""
         rows = parameter_rows(fit) if fit is not None else []
+        goodness = getattr(fit, "goodness", None)  # (ChainFit.intervals_trustworthy; a table may show a plain record)
+        trusted = goodness is None or goodness.passed
+        why = "" if trusted else goodness.message
         self.setRowCount(len(rows))
         for r, row in enumerate(rows):
             t = row["text"]
             note = "fixed" if row["fixed"] else ("not identifiable" if not row["identifiable"] else "")
+            if not (trusted or row["fixed"]):
+                row = {**row, "method": f"{NOT_TRUSTWORTHY} ({row['method']})"}
             tip = fit.suggestions.get(row["key"], "") if fit is not None else ""
             symbol, unit = parameter_symbol(row["key"])
             cells = (symbol, unit, t["value"], t["std_error"], t["low"], t["high"], row["method"], note)
             for c, text in enumerate(cells):
                 item = _item(text, (tip or text) if c == self.NOTE_COLUMN else (text if c in self.NUMBER_COLUMNS else ""))
+                if c == self.INTERVAL_COLUMN and why and not row["fixed"]:
+                    item.setToolTip(why)
                 if c == 0:
                     item.setData(Qt.ItemDataRole.UserRole, row["key"])
                     item.setToolTip(f"{row['key']} in profiles and on the command line")
