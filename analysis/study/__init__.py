@@ -121,14 +121,19 @@ from .zwidth import (
 from .renderable import (
     GRASPS,
     QUALITY_LABELS,
+    ROBUST_KINDS,
+    ROBUST_SAMPLES,
     RenderableRequest,
     RenderableStudy,
+    RobustBox,
     damping_axis,
     damping_from_axis,
     environment_edits,
     k_max_at,
     renderable_section,
     renderable_study,
+    robust_box_reason,
+    robust_study,
 )
 from .optimum import OPTIMUM_CUTOFFS, OptimumRequest, filter_optimum, optimum_kind, optimum_verdict
 from .workspace import (
@@ -188,7 +193,8 @@ __all__ = [
     "ExactChartRequest", "ExactLimitRequest", "SimulationRequest", "WallRequest", "WallAtRequest",
     "TwoAxisRequest", "TwoAxisStepRequest", "ZWidthRequest", "OptimumRequest", "TrialsRequest", "RobustRequest",
     "GRASPS", "QUALITY_LABELS", "RenderableRequest", "RenderableStudy", "damping_axis", "damping_from_axis",
-    "environment_edits", "k_max_at", "renderable_section", "renderable_study",
+    "environment_edits", "k_max_at", "renderable_section", "renderable_study", "ROBUST_KINDS", "ROBUST_SAMPLES", "RobustBox",
+    "robust_box_reason", "robust_study",
     "HandleRequest", "WorkspacePoint", "WorkspaceRequest", "handle_edits", "inertia_ellipse", "multidof_section",
     "polar_curve", "workspace_point", "workspace_study",
     # deprecated aliases, for one release: analysis.sampled's functions of these names are other things
