@@ -21,7 +21,7 @@ from analysis.multidof import (
     wall_shape,
     workspace_map,
 )
-from analysis.multidof.loci import _Loops, frequency_grid, loop_responses
+from analysis.multidof.loci import WallFreeLoops, frequency_grid, loop_responses
 from analysis.sampled import (
     CROSSING_RTOL,
     Grasp,
@@ -105,7 +105,7 @@ def test_a_dense_k_check_finds_no_unstable_k_below_the_reported_one() -> None:
 ], ids=["rigid", "undamped", "chain"])
 def test_modal_responses_equal_the_whole_loop_solved(device) -> None:
     vf = VelocityFilter("lowpass1", 500.0)
-    loops = _Loops.build([device], 2, Grasp(0.1, 2.0, 300.0), vf)
+    loops = WallFreeLoops.build([device], 2, Grasp(0.1, 2.0, 300.0), vf)
     w = frequency_grid(64)
     Ty, Tv = loops.responses(np.array([0]), w)
     ref = loop_responses(*(a[None] for a in loop_parts(device, 2, Grasp(0.1, 2.0, 300.0), vf)), w)

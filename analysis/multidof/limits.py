@@ -105,7 +105,8 @@ def check_directions(axes: int, count: int) -> np.ndarray:
     raise ValidationError("axes", "1, 2 or 3 Cartesian axes for a worst normal", axes)
 
 
-def _check_range(k_range: tuple[float, float]) -> tuple[float, float]:
+def check_k_range(k_range: tuple[float, float]) -> tuple[float, float]:
+    """The searched wall-stiffness range ``(low, high)`` [N/m], checked: 0 < low < high < inf."""
     lo, hi = float(k_range[0]), float(k_range[1])
     if not 0 < lo < hi < math.inf:
         raise ValidationError("k_range", "0 < low < high < inf (N/m)", k_range)
@@ -118,7 +119,7 @@ def _stiffness_function(device: DeviceLike, damping: float, delay_samples: int, 
     """``k_crit(normal)`` of one device and loop (normal as :func:`wall_shape` takes it)."""
     model = structural_model(device)
     b = nonnegative("damping", damping, "N s/m")
-    lo, hi = _check_range(k_range)
+    lo, hi = check_k_range(k_range)
 
     def k_crit(normal: object) -> float:
         P0, P1 = wall_pencil(model, wall_shape(model.axes, normal), b, delay_samples, grasp, velocity_filter)
@@ -163,7 +164,7 @@ def first_crossings(P0: np.ndarray, P1: np.ndarray, k_range: tuple[float, float]
     ValidationError
         When the range is not ``0 < low < high < inf``.
     """
-    lo, hi = _check_range(k_range)
+    lo, hi = check_k_range(k_range)
     W = P0.shape[0]
     n = max(int(math.ceil(PER_DECADE * math.log10(hi / lo))), 2) + 1
     grid = np.geomspace(lo, hi, n)

@@ -53,7 +53,7 @@ import numpy as np
 from analysis.chain.discretize import discretize_zoh
 from analysis.chain.velocity_filter import VelocityFilter
 from analysis.errors import ValidationError
-from analysis.multidof.limits import _check_range, first_crossings, narrow_brackets
+from analysis.multidof.limits import check_k_range, first_crossings, narrow_brackets
 from analysis.multidof.loop import loop_parts, plant_matrices
 from analysis.multidof.model import DeviceLike, structural_model
 from analysis.sampled.loop import STABILITY_TOLERANCE, is_stable, spectral_radius
@@ -126,7 +126,7 @@ def loop_responses(Phi0: np.ndarray, G: np.ndarray, Y: np.ndarray, V: np.ndarray
 
 
 @dataclass(frozen=True)
-class _Loops:
+class WallFreeLoops:
     """Wall-free loops of P devices, stacked, with the modal form of their plants.
 
     ``T_y = z^{-d} C_s (zI - A_d)^{-1} B_d`` (the held command reaches the plant after the delay)
@@ -150,7 +150,7 @@ class _Loops:
 
     @classmethod
     def build(cls, devices: Sequence[DeviceLike], delay_samples: int, grasp: Grasp,
-              velocity_filter: VelocityFilter | None) -> "_Loops":
+              velocity_filter: VelocityFilter | None) -> "WallFreeLoops":
         models = [structural_model(d) for d in devices]
         m, n = models[0].axes, models[0].n
         odd = [i for i, mo in enumerate(models) if (mo.n, mo.axes, mo.sample_time) != (n, m, models[0].sample_time)]
@@ -236,13 +236,13 @@ def _groups(shapes: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
     return out
 
 
-def _locus_crossings(loops: _Loops, shapes: np.ndarray, damping: float, low: float,
+def _locus_crossings(loops: WallFreeLoops, shapes: np.ndarray, damping: float, low: float,
                      count: int = FREQUENCIES) -> np.ndarray:
     """The smallest ``k > low`` at which each loop and wall shape has a root on the unit circle.
 
     Parameters
     ----------
-    loops : _Loops
+    loops : WallFreeLoops
         The wall-free loops, P of them.
     shapes : numpy.ndarray
         Wall shapes ``S`` (W, m, m).
@@ -281,7 +281,7 @@ def _locus_crossings(loops: _Loops, shapes: np.ndarray, damping: float, low: flo
     return best
 
 
-def _refine(loops: _Loops, U: np.ndarray, sel: np.ndarray, damping: float, low: float, w: np.ndarray,
+def _refine(loops: WallFreeLoops, U: np.ndarray, sel: np.ndarray, damping: float, low: float, w: np.ndarray,
             p: np.ndarray, f: np.ndarray, wall: np.ndarray, ga: np.ndarray, gb: np.ndarray) -> np.ndarray:
     """The crossings of the sign changes of walls ``sel`` refined in ``w``: the smallest above ``low`` (P, len(sel))."""
     best = np.full((loops.Phi0.shape[0], sel.size), math.inf)
@@ -319,7 +319,7 @@ def _congruence(U: np.ndarray, T: np.ndarray) -> np.ndarray:
     return (U[:, :, :, None] * TU[:, :, None, :]).sum(axis=1)  # (C, r, r)
 
 
-def _candidate_loci(loops: _Loops, U: np.ndarray, damping: float, p: np.ndarray, wi: np.ndarray,
+def _candidate_loci(loops: WallFreeLoops, U: np.ndarray, damping: float, p: np.ndarray, wi: np.ndarray,
                     w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_loci` of loop ``p[i]`` and wall ``wi[i]`` at frequency ``w[i]`` (one each)."""
     Ty, Tv = loops.responses(p, w[:, None])
@@ -374,7 +374,7 @@ def certified_crossings(P0: np.ndarray, P1: np.ndarray, guess: np.ndarray, k_ran
     eigenproblems : numpy.ndarray
         Eigenvalue computations spent on each pencil (W,).
     """
-    lo, hi = _check_range(k_range)
+    lo, hi = check_k_range(k_range)
     W = P0.shape[0]
     out = np.full(W, math.nan)
     cost = np.zeros(W, dtype=int)
@@ -473,8 +473,8 @@ def frequency_first_crossings(devices: Sequence[DeviceLike], shapes: np.ndarray,
         inf``, or a setting of the loop is out of range (as
         :func:`~analysis.multidof.loop.loop_parts`).
     """
-    lo, _ = _check_range(k_range)
-    loops = _Loops.build(devices, delay_samples, grasp, velocity_filter)
+    lo, _ = check_k_range(k_range)
+    loops = WallFreeLoops.build(devices, delay_samples, grasp, velocity_filter)
     b = float(damping)
     shapes = np.asarray(shapes, dtype=float).reshape((-1,) + loops.G.shape[2:3] * 2)
     P, W = loops.Phi0.shape[0], shapes.shape[0]
