@@ -86,10 +86,14 @@ class FilterOptimumView(PlotView):
             self.backward.show()
             legend = f"{opt.criterion}, {FILTER_KINDS[opt.kind]}"
             self.set_legend_text(self.area, legend)
+            # the star is the optimum only where it beats no filter; else it is the best cut-off,
+            # which the verdict says is worse than no filter
+            star = "best cut-off (worse than no filter)" if opt.best.is_backward else "optimum"
+            self.set_legend_text(self.best, star)
             self.summary = optimum_verdict(opt)
             self._series = [Series(legend, CUTOFF_LABEL, AREA_LABEL, f,
                                    np.asarray(opt.areas, float)),
-                            Series("optimum", CUTOFF_LABEL, AREA_LABEL, np.array([opt.cutoff * _HZ]),
+                            Series(star, CUTOFF_LABEL, AREA_LABEL, np.array([opt.cutoff * _HZ]),
                                    np.array([opt.area])),
                             Series("backward difference (no filter)", CUTOFF_LABEL, AREA_LABEL,
                                    np.array([math.nan]), np.array([opt.backward_area]))]
