@@ -285,14 +285,15 @@ def _export_plot(args: argparse.Namespace) -> int:
     from analysis.errors import ValidationError
 
     from app.report.content import gather
-    from app.report.figures import FIG_SIZE, ensure_app, make_view
+    from app.report.figures import FIG_SIZE, ensure_app, figure_parts, make_view
 
     ensure_app()
     from app.views import export
 
-    try:
-        content = gather(profile, source=str(args.profile), sampled=section == "simulation")
-        fig = make_view(content, PLOTS[args.plot])
+    key = PLOTS[args.plot]
+    try:  # only what this figure draws (e.g. not the filter optimum for the region)
+        content = gather(profile, source=str(args.profile), parts=figure_parts([key]))
+        fig = make_view(content, key)
     except ValidationError as err:
         return _error(f"{args.profile}: {err}")
     try:

@@ -5,6 +5,10 @@ Text is kept as small HTML fragments (``k<sub>c</sub>``), which both the PDF wri
 :attr:`ReportContent.numbers` keeps the raw values next to their printed text, so tests can
 check that the report says what the analysis computed.  Each section is a function that returns
 a :class:`~app.report.model.Part` (its sections, numbers and results); :func:`gather` joins them.
+
+The report asks for every part; ``zwidth export-plot`` asks only for the parts its figure draws
+(:data:`PARTS`; :func:`app.report.figures.figure_parts` names them for each figure), so no section
+computes what the plot does not show.
 """
 
 from __future__ import annotations
@@ -12,6 +16,7 @@ from __future__ import annotations
 import datetime as _dt
 import html
 import math
+from collections.abc import Callable, Collection
 from typing import Any
 
 import numpy as np
@@ -28,6 +33,7 @@ from analysis.study import (
     design_chart,
     designs,
     display_kind,
+    filter_optimum,
     map_params,
     map_point,
     scenario_title,
@@ -51,10 +57,10 @@ from app.report.model import (
 from app.report.observer_section import observer_part
 from app.report.renderable_section import renderable_part
 from app.report.workspace_section import workspace_part
-from app.report.zwidth_section import zwidth_part
+from app.report.zwidth_section import zwidth_part, zwidth_results
 
 __all__ = ["ReportContent", "Section", "Row", "ReportCancelled", "gather", "num", "symbol_html", "app_version",
-           "METHODS", "DIGITS"]
+           "METHODS", "DIGITS", "PARTS"]
 
 
 def app_version() -> str:
@@ -275,26 +281,75 @@ def _designs(h: Headline) -> Part:
     return _headline_part(h, _DESIGN_ROWS, h.kind.design_keys, "Design results", (par,))
 
 
+def _if(section: str, results: Callable[[Profile], dict[str, Any]]) -> Callable[[Profile], dict[str, Any]]:
+    """``results`` of a profile that has the optional ``section``; nothing (``{}``) without it."""
+    return lambda profile: results(profile) if getattr(profile, section) is not None else {}
+
+
+Alone = Callable[[Profile], dict[str, Any]]
+#: The report's computed sections, in its order: the function that writes one whole (its text, numbers and
+#: results) and its parts, each with how it is computed alone (the results its figures draw, under the keys
+#: the section gives them, without the text), where a section has more than one.  A section is written whole
+#: when all its parts are asked (the report); otherwise only its parts asked are computed (export-plot).
+_SECTIONS: tuple[tuple[Callable[[Profile], Part], dict[str, Alone | None]], ...] = (
+    (_wall, {"wall": None}),
+    (observer_part, {"observer": None}),
+    (_sampled, {"sampled": None}),
+    (identification_part, {"identification": None}),  # issue 14: only with the identification section
+    (zwidth_part, {  # issue 15: only with the controller section; the optimum is most of its work
+        "zwidth_region": _if("controller", lambda p: zwidth_results(p, optimum=False)),
+        "zwidth_optimum": _if("controller", lambda p: {"zwidth_optimum": filter_optimum(p)})}),
+    (renderable_part, {"renderable": None}),  # issue 24: only with the renderable section
+    (workspace_part, {"workspace": None}),  # issue 25: only with the multidof section
+)
+#: Every part :func:`gather` can be asked for, in the report's order: the design chart, then the sections'.
+PARTS = ("chart", *(name for _, names in _SECTIONS for name in names))
+
+
+def _chart_results(profile: Profile) -> dict[str, Any]:
+    return {"chart": design_chart(profile), "chart_point": display_kind(profile).chart_point(profile)}
+
+
+def _computed(profile: Profile, wanted: frozenset[str]) -> list[Part]:
+    """The sections of :data:`_SECTIONS` whose parts are all ``wanted``, whole; of the others, the parts
+    ``wanted`` alone."""
+    out = []
+    for whole, names in _SECTIONS:
+        if all(n in wanted for n in names):
+            out.append(whole(profile))
+        else:
+            out += [Part(results=alone(profile)) for n, alone in names.items() if n in wanted and alone]
+    return out
+
+
 def gather(profile: Profile, *, source: str | None = None, sampled: bool = True,
-           date: str | None = None) -> ReportContent:
-    """All numbers and results of one report, from :mod:`analysis.study` (no computation here)."""
+           date: str | None = None, parts: Collection[str] | None = None) -> ReportContent:
+    """All numbers and results of one report, from :mod:`analysis.study` (no computation here).
+
+    ``parts``: the parts of :data:`PARTS` to compute (``None``: all, the report). The stability result,
+    the headline and the tables that only print the profile are always there (they cost milliseconds); a
+    section is written when all its parts are asked, otherwise only its parts asked are computed, as
+    results for their figures (:func:`app.report.figures.figure_parts` gives a figure's). ``sampled=False``
+    leaves the sampled-data map and scenario out.
+    """
+    wanted = frozenset(PARTS if parts is None else parts)
+    if not wanted <= set(PARTS):
+        raise ValueError(f"unknown report parts {sorted(wanted - set(PARTS))}; the parts are {', '.join(PARTS)}")
+    if not sampled:
+        wanted -= {"sampled"}
     kind = display_kind(profile)
     disp = kind.build(profile)
     stab = kind.evaluate(profile, disp)
     h = Headline.from_result(stab, designs(profile, kind, disp))
-    parts = [
-        Part(results={"stability": stab, "chart": design_chart(profile), "chart_point": kind.chart_point(profile)}),
+    pieces = [
+        Part(results={"stability": stab, **(_chart_results(profile) if "chart" in wanted else {})}),
         _device(profile), _sampling(profile), _controller(profile), _verdict(h, profile), _designs(h),
         _headline_part(h, _RANGE_ROWS, HEADLINE_KEYS, "Impedance range (Z-width)"),
-        _wall(profile), observer_part(profile), _sampled(profile) if sampled else Part(),
-        identification_part(profile),  # issue 14: only with the identification section
-        zwidth_part(profile),  # issue 15: only with the controller section
-        renderable_part(profile),  # issue 24: only with the renderable section
-        workspace_part(profile),  # issue 25: only with the multidof section
+        *_computed(profile, wanted),
     ]
     numbers: Numbers = {}
     results: dict[str, Any] = {}
-    for part in parts:
+    for part in pieces:
         numbers.update(part.numbers)
         results.update(part.results)
     return ReportContent(
@@ -303,7 +358,7 @@ def gather(profile: Profile, *, source: str | None = None, sampled: bool = True,
         source=source,
         date=date or _dt.datetime.now().strftime("%Y-%m-%d %H:%M"),
         version=app_version(),
-        sections=tuple(sec for part in parts for sec in part.sections),
+        sections=tuple(sec for part in pieces for sec in part.sections),
         methods=METHODS,
         numbers=numbers,
         headline=h,

@@ -13,6 +13,7 @@ import html
 import math
 import os
 import sys
+from collections.abc import Callable, Iterable
 
 from app import qt_compat  # noqa: F401 - before any Qt call
 
@@ -36,7 +37,7 @@ from app.report.renderable_figures import FIGURE_KEYS as RENDERABLE_FIGURES, ren
 from app.report.workspace_figures import FIGURE_KEYS as WORKSPACE_FIGURES, workspace_figure
 
 __all__ = ["Figure", "build_figures", "ensure_app", "make_view", "FIG_SIZE", "FIGURE_KEYS", "CurvesPlot",
-           "quiet_messages", "prepare_view"]
+           "quiet_messages", "prepare_view", "figure_parts"]
 
 #: size (px at 96 dpi) the views are laid out at; the PDF scales them to the text width
 FIG_SIZE = (658, 350)
@@ -221,11 +222,29 @@ def _scenario(content: ReportContent, key: str) -> Figure | None:
     return Figure(key, "Scenario time response: forces", cap, v)
 
 
-_BUILDERS = {"bound": _bound, "reserve": _reserve, "range": _range, "chart": _chart, "tradeoff_j": _tradeoff, "tradeoff_l": _tradeoff,
-             "step": _step, "map": _map, "scenario_position": _scenario, "scenario_force": _scenario,
-             **{k: identify_figure for k in IDENTIFY_FIGURES}, **{k: zwidth_figure for k in ZWIDTH_FIGURES},
-             **{k: observer_figure for k in OBSERVER_FIGURES}, **{k: renderable_figure for k in RENDERABLE_FIGURES},
-             **{k: workspace_figure for k in WORKSPACE_FIGURES}}
+#: Each figure: the function that draws it and the parts of :func:`app.report.content.gather` whose results it
+#: draws (the one definition of what a figure needs: ``zwidth export-plot`` computes only these; every figure also
+#: has the stability result).
+_BUILDERS: dict[str, tuple[Callable[[ReportContent, str], Figure | None], tuple[str, ...]]] = {
+    "bound": (_bound, ()), "reserve": (_reserve, ()), "range": (_range, ()), "chart": (_chart, ("chart",)),
+    "tradeoff_j": (_tradeoff, ("wall",)), "tradeoff_l": (_tradeoff, ("wall",)), "step": (_step, ("wall",)),
+    "map": (_map, ("sampled",)), "scenario_position": (_scenario, ("sampled",)),
+    "scenario_force": (_scenario, ("sampled",)),
+    **{k: (observer_figure, ("observer",)) for k in OBSERVER_FIGURES},
+    **{k: (identify_figure, ("identification",)) for k in IDENTIFY_FIGURES},
+    "zwidth_region": (zwidth_figure, ("zwidth_region",)), "filter_optimum": (zwidth_figure, ("zwidth_optimum",)),
+    **{k: (renderable_figure, ("renderable",)) for k in RENDERABLE_FIGURES},
+    **{k: (workspace_figure, ("workspace",)) for k in WORKSPACE_FIGURES},
+}
+
+
+def figure_parts(keys: Iterable[str]) -> frozenset[str]:
+    """The parts of :func:`app.report.content.gather` that the figures ``keys`` draw: gather only
+    these to draw them (``gather(profile, parts=figure_parts([key]))``)."""
+    try:
+        return frozenset(part for key in keys for part in _BUILDERS[key][1])
+    except KeyError as err:
+        raise ValueError(f"unknown plot {err.args[0]!r}") from None
 
 
 def make_view(content: ReportContent, key: str) -> Figure | None:
@@ -235,7 +254,7 @@ def make_view(content: ReportContent, key: str) -> Figure | None:
     ensure_app()
     if key not in _BUILDERS:
         raise ValueError(f"unknown plot {key!r}")
-    fig = _BUILDERS[key](content, key)
+    fig = _BUILDERS[key][0](content, key)
     if fig is None:
         return None
     prepare_view(fig.view)

@@ -21,7 +21,7 @@ FIGURE_KEYS = ("zwidth_region", "filter_optimum")
 def zwidth_figure(content: ReportContent, key: str) -> Figure | None:
     """The region (``zwidth_region``) or the area against the cut-off (``filter_optimum``)."""
     res = content.results
-    if "zwidth_region" not in res:
+    if ("zwidth_region" if key == "zwidth_region" else "zwidth_optimum") not in res:
         return None
     if key == "zwidth_region":
         v = ZWidthRegionView()

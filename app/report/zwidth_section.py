@@ -31,13 +31,15 @@ __all__ = ["zwidth_results", "zwidth_part"]
 _HZ = 1.0 / (2.0 * math.pi)
 
 
-def zwidth_results(profile: Profile) -> dict[str, Any]:
+def zwidth_results(profile: Profile, *, optimum: bool = True) -> dict[str, Any]:
     """The region, the optimum and the scored trials (keys ``zwidth_region``, ``zwidth_optimum``,
-    ``zwidth_study``).
+    ``zwidth_study``); ``optimum=False``: without the optimum (the region's figure does not draw it).
 
     A trials file that cannot be read is reported under ``zwidth_trials_error``, not raised."""
     region = zwidth_region_result(profile)
-    res: dict[str, Any] = {"zwidth_region": region, "zwidth_optimum": filter_optimum(profile)}
+    res: dict[str, Any] = {"zwidth_region": region}
+    if optimum:
+        res["zwidth_optimum"] = filter_optimum(profile)
     try:
         trials = profile_trials(profile)
     except ValidationError as err:

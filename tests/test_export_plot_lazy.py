@@ -1,0 +1,177 @@
+"""export-plot computes only what its figure draws (the product rule: skip the work the view does not
+need), and the report still computes every section, whole and unchanged.
+
+The work is counted, not timed: each section's study function is wrapped, counting its calls, and a
+section the figure does not draw must not be called at all.
+"""
+
+from __future__ import annotations
+
+import csv
+from collections import Counter
+from collections.abc import Iterator
+from pathlib import Path
+
+import PySide6  # noqa: F401 - the figures need Qt: fail loudly, never skip
+import pytest
+
+from analysis.profiles.io import bundled_profiles, load_profile
+from analysis.transparency.design import WallDesign
+
+ALL_SECTIONS = Path(__file__).parent / "data" / "saved_profiles" / "all_sections.json"
+
+def _sentinels() -> dict[str, tuple[tuple[object, str], ...]]:
+    """Each part of the report -> the study functions (owner, name) that compute it, where its section
+    looks them up."""
+    import app.report.content as content
+    import app.report.identify_section as identify_section
+    import app.report.observer_section as observer_section
+    import app.report.renderable_section as renderable_section
+    import app.report.workspace_section as workspace_section
+    import app.report.zwidth_section as zwidth_section
+
+    return {
+        "chart": ((content, "design_chart"),),
+        "wall": ((WallDesign, "optimal_damping"), (WallDesign, "tradeoff")),
+        "observer": ((observer_section, "observer_response"), (observer_section, "observer_coupling")),
+        "sampled": ((content, "stability_map_result"), (content, "simulation")),
+        "identification": ((identify_section, "fit_curves"),),
+        "zwidth_region": ((zwidth_section, "zwidth_region_result"),),
+        "zwidth_optimum": ((zwidth_section, "filter_optimum"), (content, "filter_optimum")),
+        "renderable": ((renderable_section, "renderable_study"),),
+        "workspace": ((workspace_section, "workspace_study"), (workspace_section, "workspace_point")),
+    }
+
+
+@pytest.fixture
+def calls(monkeypatch: pytest.MonkeyPatch) -> Iterator[Counter[str]]:
+    """Counts the calls of every section's study functions, by part."""
+    counter: Counter[str] = Counter()
+    for part, targets in _sentinels().items():
+        for owner, name in targets:
+            original = getattr(owner, name)
+
+            def counted(*args: object, _f=original, _part=part, **kwargs: object) -> object:
+                counter[_part] += 1
+                return _f(*args, **kwargs)
+
+            monkeypatch.setattr(owner, name, counted)
+    yield counter
+
+
+@pytest.fixture(scope="module")
+def app():
+    from app.report.figures import ensure_app
+
+    return ensure_app()
+
+
+def test_every_part_is_counted_and_every_figure_names_known_parts():
+    from app.report.content import PARTS
+    from app.report.figures import FIGURE_KEYS, _BUILDERS, figure_parts
+
+    assert set(_sentinels()) == set(PARTS)
+    assert set(_BUILDERS) == set(FIGURE_KEYS)
+    for key in FIGURE_KEYS:
+        assert figure_parts([key]) <= set(PARTS), key
+    assert figure_parts(FIGURE_KEYS) == set(PARTS)  # every part is drawn by some figure
+    with pytest.raises(ValueError, match="unknown plot"):
+        figure_parts(["nope"])
+
+
+def test_unknown_parts_are_refused():
+    from app.report.content import gather
+
+    with pytest.raises(ValueError, match="zwidth_everything"):
+        gather(load_profile(bundled_profiles()["hbfd"]), parts={"zwidth_everything"})
+
+
+@pytest.mark.parametrize("name", ["hbfd", "eom"])
+def test_the_report_gathers_every_section_whole(name, calls):
+    """The report (parts=None) is the old gather: every section function called whole, in order, with
+    its numbers and results, each study function once."""
+    from app.report import content as c
+
+    profile = load_profile(bundled_profiles()[name])
+    got = c.gather(profile, date="d")
+    assert c.gather(profile, date="d", parts=c.PARTS).sections == got.sections
+    present = {"chart"} | {p for p in ("wall", "observer") if getattr(profile, p) is not None} \
+        | ({"sampled"} if profile.simulation is not None else set())
+    assert set(calls) == present
+    kind = c.display_kind(profile)
+    disp = kind.build(profile)
+    h = c.Headline.from_result(kind.evaluate(profile, disp), c.designs(profile, kind, disp))
+    whole = [c._device(profile), c._sampling(profile), c._controller(profile), c._verdict(h, profile), c._designs(h),
+             c._headline_part(h, c._RANGE_ROWS, c.HEADLINE_KEYS, "Impedance range (Z-width)"), c._wall(profile),
+             c.observer_part(profile), c._sampled(profile)]
+    assert got.sections == tuple(s for part in whole for s in part.sections)
+    numbers = {k: v for part in whole for k, v in part.numbers.items()}
+    assert got.numbers == numbers
+    assert len(numbers) > 30
+    if name == "eom":
+        assert numbers["wall.optimum.bc"][0] == got.results["optimum"].bc
+        assert 0 < numbers["wall.optimum.bc"][0] < float("inf")
+    else:
+        assert 0.0 <= numbers["map.stable_share"][0] <= 100.0
+
+
+def _parts_of(key: str) -> frozenset[str]:
+    from app.report.figures import figure_parts
+
+    return figure_parts([key])
+
+
+@pytest.mark.parametrize("key", ["bound", "chart", "tradeoff_j", "step", "map", "scenario_force", "observer_plant",
+                                 "observer_coupling", "identify", "zwidth_region", "filter_optimum",
+                                 "renderable_space", "workspace_polar"])
+def test_a_figure_gathers_only_its_parts(key, app, calls):
+    """On a profile with every section, gathering one figure's parts calls only their study functions,
+    and the figure is drawn from them."""
+    from app.report.content import gather
+    from app.report.figures import make_view
+
+    profile = load_profile(ALL_SECTIONS)
+    content = gather(profile, parts=_parts_of(key))
+    assert set(calls) == set(_parts_of(key)), calls
+    fig = make_view(content, key)
+    assert fig is not None and fig.view.export_series()
+    fig.view.deleteLater()
+
+
+def test_the_region_alone_has_the_reports_region(calls):
+    """The region computed alone is the report's (same area), without the optimum."""
+    from app.report.content import gather
+
+    profile = load_profile(ALL_SECTIONS)
+    alone = gather(profile, parts={"zwidth_region"})
+    assert "zwidth_optimum" not in alone.results and not any("Z-width region" in s.title for s in alone.sections)
+    assert calls == Counter({"zwidth_region": 1})
+    from app.report.zwidth_section import zwidth_results
+
+    full = zwidth_results(profile)
+    assert alone.results["zwidth_region"].area_linear == full["zwidth_region"].area_linear > 0
+    assert alone.results["zwidth_study"].trials == full["zwidth_study"].trials
+
+
+def _rows(path: Path) -> list[list[str]]:
+    with open(path, newline="", encoding="utf-8") as f:
+        return [r for r in csv.reader(f) if r and not r[0].startswith("#")]
+
+
+def test_export_plot_bound_computes_no_other_section(app, calls, tmp_path):
+    """`export-plot --plot bound` on a profile with every section: the stability result only."""
+    from app.cli import main
+
+    out = tmp_path / "bound.csv"
+    assert main(["export-plot", str(ALL_SECTIONS), "--plot", "bound", "-o", str(out)]) == 0
+    assert calls == Counter()
+    assert len(_rows(out)) > 10
+
+
+def test_export_plot_zwidth_region_skips_the_filter_optimum(app, calls, tmp_path):
+    from app.cli import main
+
+    out = tmp_path / "region.csv"
+    assert main(["export-plot", str(bundled_profiles()["hbfd"]), "--plot", "zwidth-region", "-o", str(out)]) == 0
+    assert calls == Counter({"zwidth_region": 1})
+    assert len(_rows(out)) > 10
