@@ -87,12 +87,48 @@ def zwidth_win(qtbot, settings, hbfd_profile):
     """The main window on the HBFD preset with a controller section on a coarse B grid
     (:data:`COARSE_B_POINTS` points, the default filter and B range): the Z-width region costs a
     quarter of the default's.  For tests of how the region follows edits, not of its resolution;
-    the default section (``controller`` None) and its grid are drawn by the tests that go through
-    every tab."""
+    the default section (``controller`` None) and its grid are drawn by the tests that take
+    :func:`win` (the Z-width tab's)."""
     from analysis.profiles import ControllerSection
 
     profile = hbfd_profile.replace(controller=ControllerSection(b_points=COARSE_B_POINTS))
     yield from _main_window(qtbot, settings, profile)
+
+
+#: the sampled-data stability map's points per axis and the exact chart's b_c points of :func:`coarse_win`
+#: (the app's are 48 and 24)
+COARSE_MAP_POINTS, COARSE_EXACT_POINTS = 12, 8
+
+
+def coarse_profile(profile):
+    """``profile`` with coarse grids in the sections that hold them: the Z-width region on
+    :data:`COARSE_B_POINTS` B points, the renderable space on 9 x 11 (M, B) points, the workspace
+    map on 6 x 5 points; every other setting (filter, qualities, linkage, handle) the default's."""
+    from analysis.profiles import ControllerSection, MultiDofSection, RenderableSection
+
+    return profile.replace(controller=ControllerSection(b_points=COARSE_B_POINTS),
+                           renderable=RenderableSection(mass_points=9, damping_points=11),
+                           multidof=MultiDofSection(x_points=6, y_points=5))
+
+
+@pytest.fixture
+def coarse_grids(monkeypatch):
+    """Windows made in this test start the Sampled-data tab's stability map on
+    :data:`COARSE_MAP_POINTS` points per axis (both displays) and its exact chart on
+    :data:`COARSE_EXACT_POINTS` b_c points (the graph reads both when a window registers its nodes)."""
+    import app.core.nodes_sampled as nodes_sampled
+
+    monkeypatch.setattr(nodes_sampled, "MAP_POINTS", COARSE_MAP_POINTS)
+    monkeypatch.setattr(nodes_sampled, "EXACT_POINTS", COARSE_EXACT_POINTS)
+
+
+@pytest.fixture
+def coarse_win(qtbot, settings, hbfd_profile, coarse_grids):
+    """The main window on the HBFD preset with every tab's results on coarse grids
+    (:func:`coarse_profile`, :func:`coarse_grids`): for the tests that go through every tab for its
+    layout, colours or menus, which do not depend on the results' resolution (each window on the
+    default grids costs about 18 s of CPU through every tab, this one about 7 s)."""
+    yield from _main_window(qtbot, settings, coarse_profile(hbfd_profile))
 
 
 @pytest.fixture
@@ -129,6 +165,40 @@ def plot_area(view):
     vb = view.plot.getViewBox()
     rect = view.plot_widget.mapFromScene(vb.sceneBoundingRect()).boundingRect()
     return view.plot_widget.grab(rect).toImage()
+
+
+def marker_drawn(view, item, tolerance: int = 40) -> bool:
+    """Whether the marker ``item`` (a :func:`app.views.marker.design_marker` of ``view``) shows its
+    fill colour at its place in the rendered plot (within 3 px), not hidden behind the data."""
+    from PySide6.QtCore import QPointF
+    from PySide6.QtGui import QColor
+
+    xs, ys = item.getData()
+    if xs is None or len(xs) == 0 or not item.isVisible():
+        return False
+    at = view.plot_widget.mapFromScene(item.mapToScene(QPointF(float(xs[0]), float(ys[0]))))
+    image = view.plot_widget.grab().toImage()
+    r = image.devicePixelRatio()
+    cx, cy = int(at.x() * r), int(at.y() * r)
+    fill = item.opts["brush"].color()
+    for y in range(cy - 3, cy + 4):
+        for x in range(cx - 3, cx + 4):
+            if image.valid(x, y):
+                c = QColor(image.pixel(x, y))
+                if max(abs(c.red() - fill.red()), abs(c.green() - fill.green()), abs(c.blue() - fill.blue())) < tolerance:
+                    return True
+    return False
+
+
+def background_lightness(image) -> int:
+    """The grey level (0-255) of the most common colour of a grid of sampled pixels: the window's
+    background (light in the light theme, dark in the dark one)."""
+    from collections import Counter
+
+    from PySide6.QtGui import QColor
+
+    counts = Counter(image.pixel(x, y) for y in range(0, image.height(), 7) for x in range(0, image.width(), 7))
+    return QColor(counts.most_common(1)[0][0]).lightness()
 
 
 @pytest.fixture

@@ -388,14 +388,17 @@ def low_contrast(window, qtbot, tabs: list[int] | None = None) -> tuple[list[str
     return problems, measured
 
 
-def test_contrast_of_every_widget_on_every_tab_in_both_themes(qtbot, settings):
+def test_contrast_of_every_widget_on_every_tab_in_both_themes(qtbot, settings, coarse_grids):
     """One window through every tab three times: dark (the stored theme: every tab is built dark),
     light, and dark again after the display switch (admittance: relabels the axes while dark); then
-    back to light on the current tab."""
+    back to light on the current tab.  On coarse grids (conftest.coarse_profile): the colours do
+    not depend on the results' resolution, and every curve, map, legend and warning is still drawn."""
+    from conftest import coarse_profile
+
     from app.window.main_window import MainWindow
 
     settings.set_theme("dark")
-    w = MainWindow(settings=settings, profile=load_profile(bundled_profiles()["hbfd"]))
+    w = MainWindow(settings=settings, profile=coarse_profile(load_profile(bundled_profiles()["hbfd"])))
     try:
         w.resize(1400, 900)
         w.show()

@@ -116,7 +116,9 @@ def _settled(qtbot, problems: Callable[[], list[str]], timeout_ms: int = 3000) -
 
 
 @pytest.mark.parametrize("size", SIZES, ids=[f"{w}x{h}" for w, h in SIZES])
-def test_every_tab_is_laid_out_whole(win, qtbot, size):
+def test_every_tab_is_laid_out_whole(coarse_win, qtbot, size):
+    """On coarse grids (conftest.coarse_win): the layout does not depend on the results' resolution."""
+    win = coarse_win
     width, height = size
     win.resize(width, height)
     qtbot.waitUntil(lambda: (win.width(), win.height()) == size, timeout=5000)

@@ -21,7 +21,9 @@ def test_the_window_fits_1024_by_700(win, qtbot):
         assert (win.width(), win.height()) == (1024, 700), win.tabs.tabText(i)  # no tab widens it again
 
 
-def test_every_plot_is_readable_at_1280_by_720(win, qtbot):
+def test_every_plot_is_readable_at_1280_by_720(coarse_win, qtbot):
+    """On coarse grids (conftest.coarse_win): the layout does not depend on the results' resolution."""
+    win = coarse_win
     win.resize(1280, 720)
     qtbot.waitUntil(lambda: (win.width(), win.height()) == (1280, 720), timeout=5000)
     seen = 0

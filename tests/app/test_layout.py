@@ -183,12 +183,15 @@ def settle(window, qtbot, tab) -> None:
     qtbot.wait(150)  # deferred layout and legend placement
 
 
-def test_every_tab_is_readable_at_laptop_sizes(qtbot, settings):
+def test_every_tab_is_readable_at_laptop_sizes(qtbot, settings, coarse_grids):
     """One window, every tab at every size in the impedance display, then again in the admittance
-    display (the display-independent tabs' results are computed once)."""
+    display (the display-independent tabs' results are computed once), on coarse grids
+    (conftest.coarse_profile): the layout does not depend on the results' resolution."""
+    from conftest import coarse_profile
+
     from app.window.main_window import MainWindow
 
-    w = MainWindow(settings=settings, profile=load_profile(bundled_profiles()["hbfd"]))
+    w = MainWindow(settings=settings, profile=coarse_profile(load_profile(bundled_profiles()["hbfd"])))
     try:
         w.show()
         qtbot.waitExposed(w)

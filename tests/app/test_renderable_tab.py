@@ -3,8 +3,6 @@ m_width's, a click sets (M, B) in one undo step, progress and cancel on the work
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 import pytest
 from PySide6.QtCore import QPoint, QPointF, Qt
@@ -117,20 +115,27 @@ def test_progress_and_cancel_keep_the_last_result(rwin, qtbot):
     assert seen and all(0 <= d <= t for d, t in seen)
 
 
-def test_screenshots_light_and_dark(rwin, qtbot, tmp_path):
-    from conftest import coloured_fraction, distinct_colours
+def test_screenshots_light_and_dark(rwin, qtbot, screenshot):
+    """The tab in both themes: the space and the M-width plot show data, the rendered (M, B) marker is
+    drawn where it was set, and the window's background follows the theme (saved under tmp_path, checked by
+    conftest.screenshot)."""
+    from conftest import marker_drawn, background_lightness
 
     rwin.resize(1280, 800)
     tab = show(rwin, qtbot)
-    tab.set_environment(0.2, 10.0)
-    out = os.environ.get("ZWIDTH_SCREENSHOTS") or str(tmp_path)
+    assert tab.set_environment(0.2, 10.0) is None
+    view = tab.space_view
+    qtbot.waitUntil(lambda: view.point.design_xy == pytest.approx((0.2, float(damping_axis(10.0)))), timeout=3000)
+    lightness = {}
     for theme in ("light", "dark"):
         rwin.theme.set_theme(theme)
-        qtbot.wait(200)
-        image = rwin.grab().toImage()
-        image.save(os.path.join(out, f"renderable_{theme}.png"))
-        assert image.width() == 1280 and image.height() == 800
-        assert distinct_colours(image) > 20 and coloured_fraction(image) > 0.02
+        # the application's palette reaches the widgets by events: wait for them, not a fixed time
+        qtbot.waitUntil(lambda: (rwin.palette().window().color().lightness() < 100) == (theme == "dark"), timeout=5000)
+        image = screenshot(rwin, f"renderable_{theme}", [view, tab.width_view])
+        assert (image.width(), image.height()) == (1280, 800)
+        assert marker_drawn(view, view.point), theme
+        lightness[theme] = background_lightness(image)
+    assert lightness["dark"] < 100 < lightness["light"], lightness
     rwin.theme.set_theme("light")
 
 
@@ -154,7 +159,7 @@ def test_without_a_box_the_robust_overlay_is_not_offered(rwin, qtbot):
     assert tab.space_view.legend.getLabel(tab.space_view.robust_legend) is None
 
 
-def test_the_robust_overlay_over_the_identified_box(boxwin, qtbot, tmp_path):
+def test_the_robust_overlay_over_the_identified_box(boxwin, qtbot, screenshot):
     tab = show(boxwin, qtbot)
     view = tab.space_view
     assert tab.robust.isEnabled() and boxwin.graph.calls(ROBUST_NODE) == 0  # off: nothing computed
@@ -179,8 +184,7 @@ def test_the_robust_overlay_over_the_identified_box(boxwin, qtbot, tmp_path):
     assert "4 corners of the identified box" in view.legend.getLabel(view.robust_legend).text
     assert f"volume {format_number(ref.volume)} kg·decades²" in tab.summary.text()
     assert ref.volume < view.study.space.volume
-    image = boxwin.grab().toImage()
-    image.save(os.path.join(os.environ.get("ZWIDTH_SCREENSHOTS") or str(tmp_path), "renderable_robust.png"))
+    screenshot(boxwin, "renderable_robust", [view])  # the hatched overlay drawn over the map
     # one quality: the overlay follows the map's quality
     tab.select_quality("passive")
     np.testing.assert_array_equal(view.robust_shown(), ref.by_quality["passive"])
