@@ -54,13 +54,14 @@ def test_report_has_the_m_width_only_with_the_section(profile_file):
     from app.report.content import gather
 
     p = load_profile(profile_file)
-    c = gather(p, sampled=False)
+    # the renderable part alone: its section is written as in the whole report (all its parts asked)
+    c = gather(p, sampled=False, parts=("renderable",))
     w = renderable_study(p).width
     assert c.numbers["renderable.m_min"][0] == w.m_min and c.numbers["renderable.m_max"][0] == w.m_max
     assert c.numbers["renderable.m_max.passive"][0] == w.by_quality["passive"][1]
     section = next(s for s in c.sections if s.title == "Renderable space and M-width")
     assert any(r.value == c.printed("renderable.m_width") for r in section.rows)
-    plain = gather(load_profile(bundled_profiles()["rigid"]), sampled=False)
+    plain = gather(load_profile(bundled_profiles()["rigid"]), sampled=False, parts=("renderable",))
     assert "renderable.m_min" not in plain.numbers and "renderable_study" not in plain.results
 
 
@@ -71,5 +72,5 @@ def test_report_html_contains_the_m_width(profile_file, tmp_path):
     out = tmp_path / "r.html"
     build_report(load_profile(profile_file), out, sampled=False)
     text = out.read_text(encoding="utf-8")
-    c = gather(load_profile(profile_file), sampled=False)
+    c = gather(load_profile(profile_file), sampled=False, parts=("renderable",))
     assert "Renderable space and M-width" in text and c.printed("renderable.m_max") in text

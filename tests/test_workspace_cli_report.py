@@ -26,6 +26,12 @@ def profile_file(tmp_path_factory):
     return d / "p.json"
 
 
+@pytest.fixture(scope="module")
+def handle_point(profile_file):
+    """The analysis's limits at the section's handle (the reference the exports are compared with)."""
+    return workspace_point(load_profile(profile_file))
+
+
 def _rows(path) -> tuple[list[str], list[list[str]]]:
     rows = [r for r in csv.reader(path.read_text(encoding="utf-8").splitlines()) if r and not r[0].startswith("#")]
     return rows[0], rows[1:]
@@ -68,24 +74,25 @@ def test_export_plot_draws_the_workspace(capfd, profile_file, tmp_path, plot):
     assert len({image.pixel(x, y) for y in range(0, image.height(), 9) for x in range(0, image.width(), 9)}) > 8
 
 
-def test_export_polar_csv_is_the_handles_limits(capfd, profile_file, tmp_path):
+def test_export_polar_csv_is_the_handles_limits(capfd, profile_file, tmp_path, handle_point):
     out = tmp_path / "polar.csv"
     proc = run_cli(capfd, "export-plot", str(profile_file), "--plot", "workspace-polar", "-o", str(out))
     assert proc.returncode == 0, proc.stderr
     _, rows = _rows(out)
-    pt = workspace_point(load_profile(profile_file))
+    pt = handle_point
     k = np.hypot([float(r[0]) for r in rows], [float(r[1]) for r in rows])
     np.testing.assert_allclose(k[:-1], pt.stiffness, rtol=1e-12)
 
 
-def test_the_report_has_the_section_only_with_the_multidof_section(profile_file):
-    with_section = gather(load_profile(profile_file), sampled=False)
+def test_the_report_has_the_section_only_with_the_multidof_section(profile_file, handle_point):
+    # the workspace part alone: the section is written as in the whole report (gather writes a section
+    # when all its parts are asked), without the design chart and the other sections' results
+    with_section = gather(load_profile(profile_file), sampled=False, parts=("workspace",))
     titles = [s.title for s in with_section.sections]
     assert "Multi-DOF workspace" in titles
     m = with_section.results["workspace_map"]
     assert with_section.numbers["workspace.bound"][0] == pytest.approx(m.minimum.stiffness, abs=1e-12)
-    pt = workspace_point(load_profile(profile_file))
-    assert with_section.numbers["workspace.handle_wall"][0] == pytest.approx(pt.wall, rel=1e-9)
-    without = gather(load_profile(bundled_profiles()["hbfd"]), sampled=False)
+    assert with_section.numbers["workspace.handle_wall"][0] == pytest.approx(handle_point.wall, rel=1e-9)
+    without = gather(load_profile(bundled_profiles()["hbfd"]), sampled=False, parts=("workspace",))
     assert "Multi-DOF workspace" not in [s.title for s in without.sections]
     assert "workspace_map" not in without.results

@@ -88,7 +88,9 @@ def test_a_click_sets_m_and_b_in_one_undo_step_without_recomputing(rwin, qtbot):
 
 
 def test_first_edit_creates_the_section_and_undo_removes_it(win, qtbot):
-    tab = show(win, qtbot)
+    tab = _tab(win)
+    win.tabs.setCurrentWidget(tab)  # built; the default grid's space is not waited for (cancelled at teardown)
+    qtbot.waitUntil(tab.is_built, timeout=5000)
     assert win.model.profile.renderable is None
     assert tab.set_environment(-0.1, 5.0) is None
     assert win.model.profile.renderable.virtual_mass == -0.1
