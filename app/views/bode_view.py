@@ -11,6 +11,12 @@ The bins a fit leaves out (:attr:`analysis.identify.Measurement.informative`: co
 power below the analysis module's thresholds) are drawn apart, greyed, on each plot, with their
 own legend entry (:data:`analysis.study.UNUSED_BINS_LABEL`, key :data:`UNUSED_KEY`); the measured
 curves hold the fitted bins only.  The plots have that entry only while such bins are drawn.
+
+Every curve is drawn point for point (:func:`exact_curve`): pyqtgraph's clip-to-view presumes x
+increasing and its automatic downsampling x evenly spaced, and neither holds for sweeps joined by a
+gap and FFT bins on a logarithmic ω axis.  Downsampled, a curve's drawn x extent would depend on the
+view's width (the first bin dropped or kept), so the auto-ranged x axis would change the extent,
+which changes the range again: the plots repainted without end (issue 23).
 """
 
 from __future__ import annotations
@@ -20,6 +26,7 @@ import math
 from collections.abc import Mapping, Sequence
 
 import numpy as np
+import pyqtgraph as pg
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QResizeEvent
 from PySide6.QtWidgets import QAbstractItemView, QGridLayout, QHeaderView, QTableWidget, QTableWidgetItem, QWidget
@@ -31,7 +38,7 @@ from app.views.base import PlotView, rich_label
 from app.views.curves_plot import CurvesPlot
 
 __all__ = ["BodeView", "ParameterTable", "OrderTable", "PARAMETER_COLUMNS", "ORDER_COLUMNS", "unit_of",
-           "MAGNITUDE_QUANTITIES", "magnitude_keys", "UNUSED_KEY", "NOT_TRUSTWORTHY"]
+           "MAGNITUDE_QUANTITIES", "magnitude_keys", "UNUSED_KEY", "NOT_TRUSTWORTHY", "exact_curve"]
 
 #: Each measured quantity's response symbol, unit and colour (a palette key; its pale variant
 #: draws the measurement, the full colour the fitted model).
@@ -57,12 +64,14 @@ class BodeView(QWidget):
         self.quantities: tuple[str, ...] = ()  # the measured quantities the magnitude plot shows
         self._show_quantities(("actuator",))
         self.phase = CurvesPlot("Phase", w_axis, ("∠H", "°"), True, False)
-        self.phase.add_curve("measured", "measured", "muted", 3.0, export_name="phase measured")
-        self.phase.add_curve("fitted", "fitted model", "a", 1.6, Qt.PenStyle.DashLine, export_name="phase fitted")
+        exact_curve(self.phase.add_curve("measured", "measured", "muted", 3.0, export_name="phase measured"))
+        exact_curve(self.phase.add_curve("fitted", "fitted model", "a", 1.6, Qt.PenStyle.DashLine,
+                                         export_name="phase fitted"))
         self.residual = CurvesPlot("Residual and coherence", w_axis, ("", "–"), True, True)
-        self.residual.add_curve("residual", "|ln(H<sub>fit</sub>/H<sub>meas</sub>)|", "b", 1.6,
-                                export_name="residual |ln(H_fit/H_meas)|")
-        self.residual.add_curve("coherence", "coherence γ²", "c", 1.6, Qt.PenStyle.DotLine, export_name="coherence")
+        exact_curve(self.residual.add_curve("residual", "|ln(H<sub>fit</sub>/H<sub>meas</sub>)|", "b", 1.6,
+                                            export_name="residual |ln(H_fit/H_meas)|"))
+        exact_curve(self.residual.add_curve("coherence", "coherence γ²", "c", 1.6, Qt.PenStyle.DotLine,
+                                            export_name="coherence"))
         self.grid = QGridLayout(self)
         self.grid.setContentsMargins(0, 0, 0, 0)
         self.grid.setSpacing(6)
@@ -112,8 +121,8 @@ class BodeView(QWidget):
             if not unused:
                 view.remove_curve(UNUSED_KEY)
             elif UNUSED_KEY not in view.items:
-                view.add_curve(UNUSED_KEY, html.escape(UNUSED_BINS_LABEL), "muted", 2.0, Qt.PenStyle.DotLine,  # rich text
-                               export_name=UNUSED_BINS_LABEL)
+                exact_curve(view.add_curve(UNUSED_KEY, html.escape(UNUSED_BINS_LABEL), "muted", 2.0,  # rich text
+                                           Qt.PenStyle.DotLine, export_name=UNUSED_BINS_LABEL))
         if not unused:
             return
         # the magnitudes of every quantity on one curve (one axis holds them all), gaps between them
@@ -146,13 +155,29 @@ class BodeView(QWidget):
             symbol, unit, color = MAGNITUDE_QUANTITIES[q]
             measured, fitted = magnitude_keys(q)
             name = f"{q} {rich_label(symbol)} [{unit}]"
-            mag.add_curve(measured, f"{name} measured", f"{color}_pale", 3.0, export_name=f"|{symbol}| {q} measured")
-            mag.add_curve(fitted, f"{name} fitted", color, 1.6, Qt.PenStyle.DashLine,
-                          export_name=f"|{symbol}| {q} fitted")
+            exact_curve(mag.add_curve(measured, f"{name} measured", f"{color}_pale", 3.0,
+                                      export_name=f"|{symbol}| {q} measured"))
+            exact_curve(mag.add_curve(fitted, f"{name} fitted", color, 1.6, Qt.PenStyle.DashLine,
+                                      export_name=f"|{symbol}| {q} fitted"))
         self.quantities = quantities
         units = list(dict.fromkeys(MAGNITUDE_QUANTITIES[q][1] for q in quantities))
         mag.set_axis_labels("ω", "rad/s", ", ".join(f"|{MAGNITUDE_QUANTITIES[q][0]}|" for q in quantities),
                             ", ".join(units))
+
+
+def exact_curve(item: pg.PlotDataItem) -> pg.PlotDataItem:
+    """Draw ``item`` point for point: no clipping to the view and no automatic downsampling (the
+    :class:`~app.views.base.PlotView` default), whose drawn x extent would follow the view's range.
+
+    Both presume x increasing and evenly spaced; a Bode curve joins sweeps (x starts again after each
+    gap) of FFT bins, evenly spaced in ω, on a logarithmic axis.  Peak downsampling by ``d`` starts
+    at the ``d // 2``-th point: the lowest bin, a third of a decade below the next, comes and goes
+    as the auto-ranged x axis widens and narrows, and the range never settles.  A few thousand
+    points are drawn at once.
+    """
+    item.setClipToView(False)
+    item.setDownsampling(ds=1, auto=False)
+    return item
 
 
 def magnitude_keys(quantity: str) -> tuple[str, str]:

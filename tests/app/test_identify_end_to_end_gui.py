@@ -51,9 +51,6 @@ def legend_texts(view) -> list[str]:
     return [label.text for _sample, label in view.legend.items]
 
 
-@pytest.mark.skip(reason="known: after a fit of actuator + gauge + clamped files the Identify view never stops "
-                         "repainting (pytest-qt's event processing does not return; also with the greyed bins and "
-                         "the verdict switched off), issue 23; the same set passes through the command line")
 @pytest.mark.numerics
 def test_the_view_on_the_mixed_set_greys_unused_bins_and_says_why(win, qtbot, files):
     tab = show(win, qtbot)
