@@ -1,7 +1,8 @@
 """The profile ``zwidth identify`` writes is complete and consistent (issue 23): a 3-mass fit on the
 4-mass HBFD base drops the base's per-mass friction (with a note), carries notes written for the
 fit instead of the HBFD's, and runs in ``analyze``, ``report`` and ``export-plot``; a per-mass list
-of the wrong length is refused at load, with its JSON path, by every one of them."""
+of the wrong length is refused at load, with its JSON path, by every one of them.  A time series'
+input power is embedded with its measurement, so a reloaded profile judges the bins as the fit did."""
 
 from __future__ import annotations
 
@@ -14,12 +15,14 @@ import pytest
 
 from analysis.chain.device import Device
 from analysis.identify import device_response
-from analysis.profiles import load_profile, save_profile
+from analysis.profiles import ProfileError, load_profile, save_profile
+from analysis.profiles.identification import parse_identification
 from analysis.profiles.schema import PER_MASS_LISTS, drop_per_mass, per_mass_values
 from analysis.profiles.sections import SimulationSection
 from analysis.resources import resource_path
-from analysis.study.identify import fit_notes, identify_chain, load_measurements, profile_with_fit
+from analysis.study.identify import fit_curves, fit_notes, identify_chain, load_measurements, profile_with_fit
 from cli_runner import run_cli
+from tests.identify_files import write_chirp_csv
 
 pytestmark = pytest.mark.numerics
 
@@ -164,3 +167,70 @@ def test_fit_notes_name_the_fixed_parameters(fitted):
     text = fit_notes(fit, measurements, "base", 4)
     assert "(ground_dampings[2] = 3 fixed, not fitted)" in text
     assert "3 masses" in text
+
+
+# -- the input power of a time series, embedded (issue 23) ---------------------------------------------
+
+
+def _section(**measurement: object) -> dict:
+    w = np.logspace(1, 3, 10)
+    m = {"quantity": "actuator", "boundary": "free", "sample_time": None, "delay_samples": 0,
+         "frequency": w.tolist(), "real": (1 / w).tolist(), "imag": [0.0] * 10, **measurement}
+    return {"intervals": {}, "measurements": [m]}
+
+
+def test_input_power_round_trips_and_is_optional():
+    power = [0.0] + [float(x) for x in np.logspace(-3, 2, 9)]
+    sec = parse_identification(_section(input_power=power, coherence=[0.9] * 10))
+    np.testing.assert_array_equal(sec.measurements[0].input_power, power)
+    assert sec.to_dict()["measurements"][0]["input_power"] == power
+    assert parse_identification(sec.to_dict()) == sec
+    old = parse_identification(_section(coherence=[0.9] * 10))  # a file written before the key
+    assert old.measurements[0].input_power is None and "input_power" not in old.to_dict()["measurements"][0]
+    assert parse_identification(_section(input_power=None)).measurements[0].input_power is None
+
+
+@pytest.mark.parametrize(("value", "where", "expected"), [
+    ([1.0] * 9 + [-1e-9], "input_power[9]", "a number >= 0 and finite (N^2/Hz)"),
+    ([1.0] * 4 + [float("inf")] + [1.0] * 5, "input_power[4]", "a finite number (N^2/Hz, >= 0)"),
+    ([1.0] * 9, "input_power", "a list of exactly 10 values (one per frequency)"),
+    ("high", "input_power", "a list of numbers (N^2/Hz, >= 0)"),
+    ([1.0] * 9 + [True], "input_power[9]", "a finite number"),
+])
+def test_a_bad_input_power_is_refused_at_its_json_path(value, where, expected):
+    with pytest.raises(ProfileError) as info:
+        parse_identification(_section(input_power=value))
+    assert info.value.json_path == f"$.identification.measurements[0].{where}"
+    assert expected in str(info.value)
+
+
+def test_reloaded_chirp_uses_the_fits_bins_and_the_report_says_the_cli_count(tmp_path, capsys):
+    """The issue's chirp (tests/identify_files.py) through ``zwidth identify``: the profile's embedded
+    measurement, reloaded, has the informative bins of the fit (coherence and input power, not
+    coherence alone), and ``zwidth report`` prints the count the CLI's fit wrote into the notes."""
+    csv = write_chirp_csv(tmp_path / "chirp.csv")
+    out = tmp_path / "chirp.json"
+    r = run_cli(capsys, "identify", csv, "--masses", "3", "-o", out)
+    assert r.returncode == 0, r.stderr
+    fitted = load_measurements([csv])[0]  # the Welch estimate the fit used (the same file, the same bins)
+    assert fitted.input_power is not None and not fitted.used.all()
+    p = load_profile(out)
+    (m, _), = fit_curves(p)
+    np.testing.assert_array_equal(m.input_power, fitted.input_power)
+    np.testing.assert_array_equal(m.used, fitted.used)
+    summary = m.bins.summary
+    assert summary.startswith(f"chirp.csv: {m.bins.used} of {m.bins.total} bins used (by coherence and input power)")
+    assert f"Bins: {summary}" in p.notes  # the count the CLI's fit wrote
+    assert m.bins.used == int(np.count_nonzero(fitted.used)) and m.bins.low_power > 0
+    html = tmp_path / "chirp.html"
+    r = run_cli(capsys, "report", out, "-o", html)
+    assert r.returncode == 0, r.stderr
+    assert f"&bull;&nbsp;{summary}" in html.read_text(encoding="utf-8")
+    # a profile written before input_power was embedded still loads; its bins are judged by coherence only
+    data = json.loads(out.read_text(encoding="utf-8"))
+    del data["identification"]["measurements"][0]["input_power"]
+    old_file = tmp_path / "old.json"
+    old_file.write_text(json.dumps(data), encoding="utf-8")
+    (old, _), = fit_curves(load_profile(old_file))
+    assert old.input_power is None and old.bins.criteria == ("coherence",)
+    assert old.bins.used >= m.bins.used and np.all(old.used[m.used])  # coherence alone keeps more

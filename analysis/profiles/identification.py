@@ -7,7 +7,8 @@ It keeps what a device model was identified from, so that the profile stays self
       "measurements": [
         {"source": "frf.csv", "quantity": "actuator", "boundary": "free",
          "sample_time": 0.001, "delay_samples": 0,
-         "frequency": [...], "real": [...], "imag": [...], "coherence": [...]}
+         "frequency": [...], "real": [...], "imag": [...], "coherence": [...],
+         "input_power": [...]}
       ],
       "notes": ["the handle mode is not detected in these measurements: ..."]
     }
@@ -19,7 +20,9 @@ It keeps what a device model was identified from, so that the profile stays self
   robust designs refuse with the parameter named);
 * ``measurements`` -- the measured frequency responses, embedded: ``frequency`` in rad/s
   (> 0, strictly increasing), ``real``/``imag`` of the response, optional ``coherence`` in
-  [0, 1]; ``quantity`` (``actuator`` | ``handle`` | ``gauge``), ``boundary`` (``free`` |
+  [0, 1] and optional ``input_power`` (the input's auto-spectrum of a time series' Welch estimate,
+  N^2/Hz, finite and >= 0: with it a reloaded measurement's bins are judged by coherence and input
+  power as the fit judged them, issue 23); ``quantity`` (``actuator`` | ``handle`` | ``gauge``), ``boundary`` (``free`` |
   ``clamped``), ``sample_time`` (s, or ``null`` for a continuous-time measurement),
   ``delay_samples`` and an optional ``source`` name;
 * ``notes`` (optional) -- the fit's warnings, one string each (e.g. that the handle mode was not
@@ -61,7 +64,7 @@ IDENTIFICATION_BOUNDARIES = ("free", "clamped")
 #: A parameter key: the profile's JSON name of a device vector and a 0-based index.
 PARAMETER_KEY = re.compile(r"^(masses|stiffnesses|dampings|ground_dampings)\[(\d+)\]$")
 _MEASUREMENT_KEYS = {"source", "quantity", "boundary", "sample_time", "delay_samples", "frequency", "real",
-                     "imag", "coherence"}
+                     "imag", "coherence", "input_power"}
 _MIN_POINTS = 8
 
 
@@ -77,6 +80,7 @@ class MeasurementData:
     delay_samples: int = 0
     coherence: np.ndarray | None = None
     source: str | None = None
+    input_power: np.ndarray | None = None
 
     def to_dict(self) -> dict:
         """The JSON-ready measurement (``source`` left out when unknown)."""
@@ -89,6 +93,8 @@ class MeasurementData:
             del out["source"]
         if self.coherence is not None:
             out["coherence"] = [float(x) for x in self.coherence]
+        if self.input_power is not None:
+            out["input_power"] = [float(x) for x in self.input_power]
         return out
 
 
@@ -198,13 +204,19 @@ def _measurement(obj: object, jp: str) -> MeasurementData:
         bad = np.flatnonzero((coh < 0) | (coh > 1))
         if bad.size:
             raise _fail(f"{jp}.coherence[{bad[0]}]", "a number in [0, 1]", float(coh[bad[0]]))
+    power = None
+    if obj.get("input_power") is not None:
+        power = _vector(obj["input_power"], f"{jp}.input_power", "N^2/Hz, >= 0", w.size)
+        bad = np.flatnonzero(power < 0)
+        if bad.size:
+            raise _fail(f"{jp}.input_power[{bad[0]}]", "a number >= 0 and finite (N^2/Hz)", float(power[bad[0]]))
     quantity = _choice(obj, "quantity", jp, IDENTIFICATION_QUANTITIES, "actuator")
     boundary = _choice(obj, "boundary", jp, IDENTIFICATION_BOUNDARIES, "free")
     source = obj.get("source")
     if source is not None and not isinstance(source, str):
         raise _fail(f"{jp}.source", "a string or null", source)
     T, d = _timing(obj, jp, w)
-    return MeasurementData(w, h, quantity, boundary, T, d, coh, source)
+    return MeasurementData(w, h, quantity, boundary, T, d, coh, source, power)
 
 
 def parse_identification(data: object, jp: str = "$.identification") -> IdentificationSection:

@@ -298,7 +298,8 @@ def parameter_rows(fit: ChainFit) -> list[dict]:
 def _data(m: Measurement) -> MeasurementData:
     return MeasurementData(frequency=m.frequency, response=m.response, quantity=m.quantity, boundary=m.boundary,
                            sample_time=m.sample_time, delay_samples=m.delay_samples, coherence=m.coherence,
-                           source=None if m.source is None else os.path.basename(m.source))
+                           source=None if m.source is None else os.path.basename(m.source),
+                           input_power=m.input_power)
 
 
 def profile_with_fit(profile: Profile, fit: ChainFit, measurements: Sequence[Measurement] | None = None,

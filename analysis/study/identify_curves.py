@@ -141,10 +141,11 @@ def section_measurements(section: IdentificationSection) -> list[Measurement]:
     Returns
     -------
     list of Measurement
-        Its measurements, in order.
+        Its measurements, in order, each with its coherence and input power where embedded, so
+        that its informative bins are those the fit used.
     """
     return [make_measurement(m.frequency, m.response, m.quantity, m.boundary, m.sample_time, m.delay_samples,
-                             m.coherence, m.source) for m in section.measurements]
+                             m.coherence, m.source, m.input_power) for m in section.measurements]
 
 
 def fit_curves(profile: Profile) -> list[tuple[Measurement, np.ndarray]]:

@@ -103,8 +103,7 @@ def _bins_and_goodness(pairs: list, goodness: Goodness | None, numbers: Numbers)
     verdict of the profile's device on them."""
     out = []
     if pairs:
-        out.append("<b>Bins used</b> (the others are greyed in the figures; an embedded measurement keeps its "
-                   "coherence, not the input power of a time series):")
+        out.append("<b>Bins used</b> (the others are greyed in the figures):")
         out += [f"&bull;&nbsp;{html.escape(m.bins.summary)}" for m, _ in pairs]
         numbers["identify.bins_used"] = (sum(m.bins.used for m, _ in pairs), str(sum(m.bins.used for m, _ in pairs)))
     if goodness is not None:
