@@ -23,6 +23,7 @@ from hypothesis import strategies as st
 
 from analysis import Device, load_profile
 from analysis.errors import ValidationError
+from analysis.profiles import per_mass_changes
 from analysis.profiles.schema import FIELDS_BY_NAME
 from analysis.study import (
     BEYOND,
@@ -50,7 +51,8 @@ def one_mass(sample_time: float):
     """A valid one-mass device (1 kg, 10³ N·s/m to ground) at b_c = 10³ N·s/m, impedance display."""
     device = Device(masses=[1.0], stiffnesses=[], dampings=[], ground_dampings=[1e3], sample_time=sample_time,
                     band_min=1.0)
-    return load_profile(HBFD).replace(device=device, bc=1e3, display="impedance")
+    base = load_profile(HBFD)  # its 4-value friction resized to the one mass (a profile refuses another length)
+    return base.replace(device=device, bc=1e3, display="impedance", **per_mass_changes(base, device.n))
 
 
 def test_limits_are_the_loaders_own():

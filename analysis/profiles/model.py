@@ -23,7 +23,7 @@ from analysis.profiles.controller import ControllerSection
 from analysis.profiles.identification import IdentificationSection, check_against_device
 from analysis.profiles.multidof import MultiDofSection
 from analysis.profiles.renderable import RenderableSection
-from analysis.profiles.schema import DISPLAYS, FIELDS_BY_NAME, GAIN_NAMES
+from analysis.profiles.schema import DISPLAYS, FIELDS_BY_NAME, GAIN_NAMES, PER_MASS_LISTS, edit_per_mass, per_mass_values
 from analysis.profiles.sections import SimulationSection
 from analysis.transparency.settings import ObserverSettings, WallSettings
 
@@ -135,6 +135,7 @@ class Profile:
         if not isinstance(self.device, Device):
             raise ValidationError("device", "a Device", self.device)
         choice("display", self.display, DISPLAYS, allowed=" or ".join(repr(d) for d in DISPLAYS))
+        self._check_per_mass()
         if self.identification is not None:
             check_against_device(self.identification, self.device.n)
         if self.controller is not None:  # the filter's cut-off against this device's Nyquist frequency
@@ -148,6 +149,16 @@ class Profile:
             substeps = opt.substeps if any(f > 0 for f in opt.friction) else 1
             check_simulation_size(self.simulation.scenario.duration, self.device.sample_time, substeps,
                                   self.device.n)
+
+    def _check_per_mass(self) -> None:
+        """Every list indexed by mass (:data:`~analysis.profiles.schema.PER_MASS_LISTS`) holds one value
+        per mass of the device, or none where the schema allows an empty list; the error names the
+        list's field, which :func:`analysis.profiles.fields.error_at` puts at its JSON path."""
+        held = per_mass_values(self)
+        for path, node in PER_MASS_LISTS:
+            values = held.get(path)
+            if values is not None and len(values) != self.device.n and not (node.empty_ok and not values):
+                raise ValidationError(str(node.name), node.expected(self.device.n), list(values))
 
     def replace(self, **changes) -> Profile:
         """A copy with some fields changed, validated again.
@@ -177,11 +188,12 @@ class Profile:
 
 
 def per_mass_changes(profile: Profile, n: int, removed: int | None = None) -> dict[str, object]:
-    """The section changes that keep every list indexed by mass (the simulator's ``friction``) at one
-    value per mass when ``profile``'s device becomes ``n`` masses.
+    """The section changes that keep every list indexed by mass
+    (:data:`~analysis.profiles.schema.PER_MASS_LISTS`: the simulator's ``friction``) at one value per
+    mass when ``profile``'s device becomes ``n`` masses.
 
-    Apply them with the new device (``profile.replace(device=new, **per_mass_changes(...))``): the
-    loader refuses a per-mass list whose length differs from the device's masses.
+    Apply them with the new device (``profile.replace(device=new, **per_mass_changes(...))``): a
+    profile refuses a per-mass list whose length differs from the device's masses.
 
     Parameters
     ----------
@@ -190,20 +202,21 @@ def per_mass_changes(profile: Profile, n: int, removed: int | None = None) -> di
     n : int
         The new number of masses.
     removed : int or None
-        The (0-based) mass removed; ``None``: masses added at the actuator end (without friction)
-        or dropped from it.
+        The (0-based) mass removed; ``None``: masses added at the actuator end (with a 0 each: no
+        friction) or dropped from it.
 
     Returns
     -------
     dict
-        ``{"simulation": SimulationSection}`` with the resized list, or ``{}`` when nothing changes.
+        Profile field -> its new value (``{"simulation": SimulationSection}``) with each resized
+        list, or ``{}`` when nothing changes (an empty list stays empty: none).
     """
-    sim = profile.simulation
-    if sim is None or not sim.options.friction or len(sim.options.friction) == n:
-        return {}
-    friction = list(sim.options.friction)
-    if removed is not None and 0 <= removed < len(friction):
-        del friction[removed]
-    friction = (friction + [0.0] * n)[:n]
-    return {"simulation": SimulationSection(options=sim.options.replace(friction=tuple(friction)),
-                                            scenario=sim.scenario)}
+    def resize(values: tuple[float, ...]) -> tuple[float, ...]:
+        if not values or len(values) == n:
+            return values
+        kept = list(values)
+        if removed is not None and 0 <= removed < len(kept):
+            del kept[removed]
+        return tuple((kept + [0.0] * n)[:n])
+
+    return edit_per_mass(profile, resize)[0]

@@ -36,7 +36,7 @@ Numerics only: this module never imports Qt.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -65,6 +65,7 @@ __all__ = [
     "PER_MASS_LISTS",
     "per_mass_values",
     "drop_per_mass",
+    "edit_per_mass",
     "GAIN_NAMES",
     "DISPLAYS",
     "walk",
@@ -393,6 +394,8 @@ def _per_mass_lists() -> tuple[tuple[str, Field], ...]:
     for path, node in out:
         if not node.empty_ok:  # a profile whose chain changes order must be able to drop it
             raise ValueError(f"the per-mass list {path} inside a section must allow an empty list")
+        if node.name is None:  # a Profile's refusal names it, and error_at maps the name to the path
+            raise ValueError(f"the per-mass list {path} inside a section must declare its API name")
     return out
 
 
@@ -480,12 +483,37 @@ def drop_per_mass(record: object, n: int) -> tuple[dict[str, Any], dict[str, tup
     dropped : dict of str to tuple of float
         JSON path -> the values dropped there.
     """
+    return edit_per_mass(record, lambda values: () if values and len(values) != n else values)
+
+
+def edit_per_mass(record: object, edit: Callable[[tuple[float, ...]], tuple[float, ...]]
+                  ) -> tuple[dict[str, Any], dict[str, tuple[float, ...]]]:
+    """The changes that replace each per-mass list of ``record`` (:data:`PER_MASS_LISTS`) by ``edit``
+    of its values; :func:`drop_per_mass` and :func:`analysis.profiles.per_mass_changes` are two such
+    edits.
+
+    Parameters
+    ----------
+    record : object
+        A :class:`~analysis.profiles.Profile` (its lists read by :func:`per_mass_values`).
+    edit : callable
+        The list's values -> its new values (the same values: unchanged).
+
+    Returns
+    -------
+    changes : dict of str to object
+        Profile field -> its new value (each section rebuilt, so validated again); empty when no
+        list changes.
+    old : dict of str to tuple of float
+        JSON path -> the values replaced there.
+    """
     changes: dict[str, Any] = {}
-    dropped: dict[str, tuple[float, ...]] = {}
+    old: dict[str, tuple[float, ...]] = {}
     for path, values in per_mass_values(record).items():
-        if not values or len(values) == n:
+        new = tuple(float(v) for v in edit(values))
+        if new == values:
             continue
         top, *rest = path.split(".")[1:]
-        changes[top] = _replaced(changes.get(top, getattr(record, top)), rest, ())
-        dropped[path] = values
-    return changes, dropped
+        changes[top] = _replaced(changes.get(top, getattr(record, top)), rest, new)
+        old[path] = values
+    return changes, old
