@@ -30,6 +30,8 @@ __all__ = [
     "COLGATE_SCHENKEL",
     "COLONNESE_CHAN",
     "COLONNESE_OKAMURA",
+    "LI_TAVAKOLI_HUANG",
+    "CAVUSOGLU",
     "EOM",
     "HANNAFORD_RYU",
     "MOREYRA_HANNAFORD",
@@ -165,9 +167,25 @@ COLONNESE_CHAN = Reference(
     "Dynamics of Kinesthetic Haptic Displays",
     "Proceedings of the IEEE Haptics Symposium (HAPTICS 2016)",
 )
+LI_TAVAKOLI_HUANG = Reference(
+    "Li, Tavakoli & Huang",
+    "Li, J., Tavakoli, M., & Huang, Q.",
+    2014,
+    "Absolute Stability of Multi-DOF Multilateral Haptic Systems",
+    "IEEE Transactions on Control Systems Technology, doi:10.1109/TCST.2014.2301840",
+)
+CAVUSOGLU = Reference(
+    "Çavuşoğlu, Feygin & Tendick",
+    "Çavuşoğlu, M. C., Feygin, D., & Tendick, F.",
+    2002,
+    "A Critical Study of the Mechanical and Electrical Properties of the PHANToM Haptic Interface "
+    "and Improvements for High-Performance Control",
+    "Presence: Teleoperators and Virtual Environments, 11(6)",
+)
 
 REFERENCES: tuple[Reference, ...] = (ADAMS, EOM, COLGATE_BROWN, COLGATE_SCHENKEL, CHAWDA,
-                                     HANNAFORD_RYU, MOREYRA_HANNAFORD, COLONNESE_OKAMURA, COLONNESE_CHAN)
+                                     HANNAFORD_RYU, MOREYRA_HANNAFORD, COLONNESE_OKAMURA, COLONNESE_CHAN,
+                                     LI_TAVAKOLI_HUANG, CAVUSOGLU)
 
 
 def citation_text(primary: Reference, *others: Reference) -> str:

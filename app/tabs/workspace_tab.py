@@ -23,6 +23,7 @@ from PySide6.QtWidgets import QFrame, QLabel, QScrollArea, QSplitter, QVBoxLayou
 
 from analysis.multidof import WorkspaceMap
 from analysis.study import WorkspacePoint, format_number, handle_edits, multidof_section
+from analysis.study.citations import ADAMS, COLGATE_BROWN
 
 from app.core import nodes_workspace
 from app.core.compute_graph import ComputeGraph
@@ -30,6 +31,7 @@ from app.core.nodes_workspace import WORKSPACE_MAP_NODE, WORKSPACE_POINT_NODE
 from app.panels.workspace_panel import WorkspacePanel
 from app.tabs.async_jobs import AsyncJobs
 from app.tabs.base import AnalysisTab, scroll_body
+from app.widgets.citation_note import CitationNote
 from app.views.base import PlotView
 from app.views.workspace_view import WorkspaceMapView, WorkspacePolarView
 from app.widgets.node_progress import NodeProgress
@@ -119,6 +121,8 @@ class WorkspaceTab(AsyncJobs, AnalysisTab):
         body = QVBoxLayout(scroll_body(self))
         body.setContentsMargins(4, 2, 4, 4)
         body.addWidget(split, 1)
+        # the exact sampled loop of the 1-DOF analysis, taken to every wall direction (issue 25)
+        body.addWidget(CitationNote(ADAMS, COLGATE_BROWN))
         ctx.graph.ready.connect(self._on_ready)
         ctx.graph.cancelled.connect(self.on_job_cancelled)
         ctx.graph.failed.connect(self.on_job_failed)

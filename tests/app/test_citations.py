@@ -13,6 +13,7 @@ from PySide6.QtGui import QPalette
 from analysis.study import citation_text
 from analysis.study.citations import (
     ADAMS,
+    COLGATE_BROWN,
     COLGATE_SCHENKEL,
     COLONNESE_CHAN,
     COLONNESE_OKAMURA,
@@ -34,6 +35,7 @@ EXPECTED = {
     "Disturbance observer": (EOM, ()),
     "Identify": (ADAMS, ()),
     "Renderable space": (COLONNESE_CHAN, (COLONNESE_OKAMURA,)),
+    "Workspace": (ADAMS, (COLGATE_BROWN,)),
 }
 
 
@@ -82,4 +84,4 @@ def test_citation_text_spells_out_each_reference():
     assert both.startswith("Equation numbers refer to Adams, R. J., Moreyra, M. R., & Hannaford, B. (1998).")
     assert " Also cited: Colgate, J. E., & Schenkel, G. G. (1997). Passivity of a Class of Sampled-Data " in both
     assert ADAMS.html().startswith("Adams, R. J., Moreyra, M. R., &amp; Hannaford, B. (1998). <i>Stability")
-    assert len({r.short for r in REFERENCES}) == len(REFERENCES) == 9
+    assert len({r.short for r in REFERENCES}) == len(REFERENCES) == 11
