@@ -36,7 +36,7 @@ from app.widgets.colors import ERROR_STYLE
 from app.widgets.sci_spin_box import SciSpinBox
 from app.widgets.section_binding import SectionBinding
 
-__all__ = ["RenderablePanel", "NUMBER_FIELDS"]
+__all__ = ["RenderablePanel", "NUMBER_FIELDS", "SHORT_TEXTS"]
 
 _HZ = 2.0 * math.pi
 #: The section's numbers shown as fields: name -> (group, label, unit shown, stored per shown unit).
@@ -58,6 +58,11 @@ NUMBER_FIELDS: dict[str, tuple[str, str, str, float]] = {
 _CHOICES = {"acceleration_kind": ("acc", "Estimate", ACCELERATION_KINDS),
             "acceleration_lowpass": ("acc", "Low-pass", LOWPASS_KINDS),
             "grasps": ("q", "Grasps", GRASP_SETS)}
+#: The combo boxes' short item texts (the column is ~170 px wide); each item's full description
+#: (:data:`~analysis.sampled.ACCELERATION_KINDS`, ...) is its tool tip.
+SHORT_TEXTS = {"second_difference": "second difference", "filtered_velocity": "filtered velocity",
+               "none": "none", "lowpass1": "first-order", "butter2": "2nd-order Butterworth",
+               "hands_off": "hands-off", "firm": "hands-off, firm", "all": "hands-off, firm, rigid"}
 #: The quiet quality's encoder resolution before one is set (m): a 10 µm encoder.
 DEFAULT_RESOLUTION = 1e-5
 
@@ -91,7 +96,8 @@ class RenderablePanel(QWidget):
             combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
             combo.setMinimumContentsLength(14)  # the column's width, not the longest description's
             for key, text in options.items():
-                combo.addItem(text, key)
+                combo.addItem(SHORT_TEXTS.get(key, text), key)
+                combo.setItemData(combo.count() - 1, text, Qt.ItemDataRole.ToolTipRole)
             combo.setObjectName(f"renderable_{name}")
             combo.currentIndexChanged.connect(lambda _i, n=name: self._on_choice(n))
             self.choices[name] = combo
@@ -189,6 +195,7 @@ class RenderablePanel(QWidget):
             box.setChecked(q in sec.qualities)
         for name, combo in self.choices.items():
             combo.setCurrentIndex(max(0, combo.findData(getattr(sec, name))))
+            combo.setToolTip(combo.itemData(combo.currentIndex(), Qt.ItemDataRole.ToolTipRole))
         for name, f in self.fields.items():
             value = getattr(sec, name)
             if name == "acceleration_cutoff" and not math.isfinite(value):

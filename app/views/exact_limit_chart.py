@@ -93,6 +93,7 @@ class ExactLimitChart(PlotView):
         self._notes["bound"] = notes
         self._update_empty()
         self._refresh_warning()
+        self._range_to_data()
         self.bump()
 
     def update_exact(self, chart: CriticalChart | CriticalMassChart | None, display: DisplayKind | str) -> None:
@@ -131,7 +132,18 @@ class ExactLimitChart(PlotView):
         self._update_empty()
         self.header.setText(f"<b>{self.title}</b>")
         self._refresh_warning()
+        self._range_to_data()
         self.bump()
+
+    def _range_to_data(self) -> None:
+        """Auto-range now on the curves just set (both, whichever came last).
+
+        pyqtgraph auto-ranges only when the view is next painted: until then the range was the one
+        of the curve drawn first -- in the admittance display the exact m_c (kilograms) without the
+        two-port region's edges (tens to a thousand kilograms), which arrive later.  An axis the user
+        zoomed or a drag holds (auto-range off) keeps its range.
+        """
+        self.plot.getViewBox().updateAutoRange()
 
     def _update_empty(self) -> None:
         """An empty chart says so in the plot (and in exports) once the exact limit is known."""

@@ -74,6 +74,11 @@ class WorkspaceMapView(PickablePlotView):
         for item in (self.linkage, self.ellipse, self.normal, self.arrow, self.handle, self.worst):
             self.plot.addItem(item)
         self.legend_outside(3)
+        # the legend row spans the colour bar's column too: LegendRow fits its columns to the widget's
+        # whole width, which under the axes' columns alone it would overflow by the bar (cut on the right)
+        layout = self.plot.layout
+        layout.removeItem(self.legend)
+        layout.addItem(self.legend, 4, 0, 1, layout.columnCount())
         self.map: WorkspaceMap | None = None
         self.point: WorkspacePoint | None = None
         self.plot_widget.setMinimumSize(240, 200)
