@@ -61,7 +61,7 @@ _CHOICES = {"acceleration_kind": ("acc", "Estimate", ACCELERATION_KINDS),
 #: The combo boxes' short item texts (the column is ~170 px wide); each item's full description
 #: (:data:`~analysis.sampled.ACCELERATION_KINDS`, ...) is its tool tip.
 SHORT_TEXTS = {"second_difference": "second difference", "filtered_velocity": "filtered velocity",
-               "none": "none", "lowpass1": "first-order", "butter2": "2nd-order Butterworth",
+               "none": "no low-pass", "lowpass1": "first-order", "butter2": "2nd-order Butterworth",
                "hands_off": "hands-off", "firm": "hands-off, firm", "all": "hands-off, firm, rigid"}
 #: The quiet quality's encoder resolution before one is set (m): a 10 µm encoder.
 DEFAULT_RESOLUTION = 1e-5
