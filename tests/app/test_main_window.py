@@ -324,15 +324,30 @@ def test_run_gui_opens_profile_from_command_line(qapp, tmp_path, monkeypatch):
     seen = []
 
     def finish():
-        for w in QApplication.topLevelWidgets():
-            if isinstance(w, main_window.MainWindow) and w.isVisible():
-                seen.append((w.windowTitle(), w.model.profile.name))
-                w.undo_stack.setClean()
-                w.runner.shutdown()
-                w.close()  # the last window: the event loop ends (an extra quit() would stay queued)
+        # the window run_gui shows (not one another test left open); under load it may not be
+        # shown yet when the first timer fires, so look again until it is
+        mine = [w for w in QApplication.topLevelWidgets() if isinstance(w, main_window.MainWindow)
+                and w.isVisible() and "cmdline.json" in w.windowTitle()]
+        if not mine:
+            QTimer.singleShot(100, finish)
+            return
+        w = mine[0]
+        seen.append((w.windowTitle(), w.model.profile.name))
+        w.undo_stack.setClean()
+        w.runner.shutdown()
+        w.close()
+        # end run_gui's event loop directly: with quit-on-last-window-closed off no Quit event
+        # is queued to end a later test's loop, and a window another test left open cannot keep
+        # this one running (that hung an xdist worker)
+        QApplication.exit(0)
 
-    QTimer.singleShot(300, finish)
-    assert main_window.run_gui(str(path)) == 0
+    before = QApplication.quitOnLastWindowClosed()
+    QApplication.setQuitOnLastWindowClosed(False)
+    try:
+        QTimer.singleShot(300, finish)
+        assert main_window.run_gui(str(path)) == 0
+    finally:
+        QApplication.setQuitOnLastWindowClosed(before)
     assert seen and "cmdline.json" in seen[0][0] and seen[0][1] == p.name
 
 
