@@ -250,10 +250,8 @@ def _export_plot(args: argparse.Namespace) -> int:
     fmt = Path(args.output).suffix.lower().lstrip(".")
     if fmt not in ("png", "svg", "csv"):
         return _usage("export-plot", f"-o {args.output}: the extension must be .png, .svg or .csv")
-    for opt in ("width", "height"):
-        value = getattr(args, opt)
-        if value is not None and not 16 <= value <= 20000:
-            return _usage("export-plot", f"--{opt} must be between 16 and 20000 pixels")
+    for opt in (o for o in ("width", "height") if getattr(args, o) is not None and not 16 <= getattr(args, o) <= 20000):
+        return _usage("export-plot", f"--{opt} must be between 16 and 20000 pixels")
     if not 10 <= args.dpi <= 2400:
         return _usage("export-plot", "--dpi must be between 10 and 2400")
     code = _clash("export-plot", args)

@@ -52,6 +52,10 @@ MAX_MASSES = 8
 FIXED_COLUMNS = ("parameter", "fix", "value", "unit")
 
 
+#: The Apply button's tool tip: each file keeps its own kind.
+APPLY_TIP = ("Give the selected file the quantity, handle and timing above (each file keeps its own: e.g. "
+             "an actuator test and a gauge test fitted together)")
+
 class NumberBox(SciSpinBox):
     """A :class:`~app.widgets.sci_spin_box.SciSpinBox` that prints its value by the study's one rule
     (:func:`~analysis.study.quantities.format_number`, plain text: it reads back)."""
@@ -75,8 +79,7 @@ class IdentifyPanel(QWidget):
         self.add_button = QPushButton("Add files…")
         self.remove_button = QPushButton("Remove")
         self.apply_button = QPushButton("Apply")
-        self.apply_button.setToolTip("Give the selected file the quantity, handle and timing above (each file "
-                                     "keeps its own: e.g. an actuator test and a gauge test fitted together)")
+        self.apply_button.setToolTip(APPLY_TIP)
         self.error = QLabel()
         self.error.setObjectName("identifyError")
         self.error.setWordWrap(True)
