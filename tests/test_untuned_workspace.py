@@ -1,12 +1,12 @@
 """The chain responses' work arrays (issue 21): kept per thread between calls, never returned,
-bounded, taken block by block on long frequency vectors without changing a bit, and with them a
-full evaluation does not page-fault its memory in again under glibc's default allocator."""
+bounded, taken block by block on long frequency vectors without changing a bit, and with them an
+evaluation allocates little beyond its results (the page faults this saves are a benchmark's
+measurement: ``tests/benchmarks/bench_untuned.py``)."""
 
 from __future__ import annotations
 
-import platform
-import sys
 import threading
+import tracemalloc
 
 import numpy as np
 import pytest
@@ -156,14 +156,24 @@ def test_workspace_is_bounded():
     assert sum(b.nbytes for b in response.workspace_buffers()) <= 8 << 20
 
 
-@pytest.mark.skipif(not sys.platform.startswith("linux") or platform.libc_ver()[0] != "glibc",
-                    reason="glibc's trim behaviour and getrusage's minor faults")
-def test_no_page_faults_with_the_default_allocator():
-    """In a fresh interpreter that never tunes the allocator, a full HBFD evaluation (either
-    display) page-faults nothing in again: before the workspace, about 170 minor faults per
-    impedance evaluation (the run time of the tuned process x 1.7)."""
-    from tests.benchmarks.bench_untuned import measure_in_fresh_process
-
-    res = measure_in_fresh_process(tuned=False, repeat=60)
-    for display, row in res.items():
-        assert row["minflt_per_eval"] < 10, (display, row)
+def test_an_evaluation_allocates_no_work_arrays():
+    """In steady state, a chain response allocates little beyond what it returns: its (n-1) x N
+    work arrays come from the workspace.  Measured with tracemalloc (numpy reports its data to it),
+    which counts the same bytes on every machine; the page faults this saves under glibc's
+    default allocator depend on the kernel and the C library, so ``zwidth bench`` reports them
+    (``bench_untuned``) and no test asserts them.  Without the workspace the same calls allocate
+    940 to 1270 KiB beyond their results; with it, 240 to 270 KiB."""
+    dev = make_hbfd()
+    s = tustin(dev, 2000)
+    for variant, kw in variants(s).items():
+        for _ in range(3):  # the workspace reaches its size for this shape
+            chain_response(dev, s, **kw)
+        tracemalloc.start()
+        try:
+            base = tracemalloc.get_traced_memory()[0]
+            r = chain_response(dev, s, **kw)
+            peak = tracemalloc.get_traced_memory()[1]
+        finally:
+            tracemalloc.stop()
+        returned = sum(getattr(r, f).nbytes for f in FIELDS if getattr(r, f) is not None)
+        assert peak - base - returned < 300 * 1024, (variant, peak - base, returned)

@@ -27,17 +27,31 @@ def _drag(win, qtbot, tab, field, steps: int = 6) -> list:
     return ranges
 
 
+def _settled_ranges(tab, views, qtbot) -> list:
+    """The views' ranges once painting changes them no more (pyqtgraph applies a pending
+    auto-range when it paints; under load the last one can come late)."""
+    last = None
+    for _ in range(100):
+        tab.grab()  # a paint
+        QApplication.processEvents()
+        ranges = [v.plot.getViewBox().viewRange() for v in views]
+        if ranges == last:
+            return ranges
+        last = ranges
+        qtbot.wait(50)
+    raise AssertionError(f"the ranges never settled: {last}")
+
+
 def test_the_sampled_tab_holds_its_map_and_chart_axes_during_a_drag(win, qtbot):
     g = win.graph
     tab = win.tab(SampledTab)
     win.tabs.setCurrentWidget(tab)
     qtbot.waitUntil(lambda: not tab.stale and all(g.is_fresh(n) for n in ASYNC_NODES), timeout=120000)
     g.drag.settle_ms = 600_000
-    qtbot.wait(300)  # painted: pyqtgraph applies an auto-range when it paints
     views = (tab.map_view, tab.exact_view)  # the map is framed on its grid; the chart auto-ranges
     auto = [tuple(v.plot.getViewBox().autoRangeEnabled()) for v in views]
     assert not any(auto[0]) and all(auto[1])
-    before = [v.plot.getViewBox().viewRange() for v in views]
+    before = _settled_ranges(tab, views, qtbot)
     marker = marker_xy(tab.exact_view.point)
     ranges = _drag(win, qtbot, tab, win.panel.fields["kc"])
     for step in ranges:  # the markers moved, the axes did not: no auto-range while the drag moves
