@@ -73,6 +73,38 @@ def hand_radius(m: float, b: float, M: float, B: float, K: float, d: int) -> flo
     return float(np.abs(np.roots(p)).max())
 
 
+def hand_radii(m: float, b: float, M: float, B: float, K: np.ndarray, d: int) -> np.ndarray:
+    """:func:`hand_radius` at every stiffness of ``K`` at once, bit for bit: the same coefficients
+    (each a sum of two terms, the same in any order) and the same companion matrices as
+    ``np.roots``, their eigenvalues in one batched call.  A stiffness whose polynomial has a
+    trailing zero coefficient (``np.roots`` deflates it) or is 0 takes :func:`hand_radius` itself."""
+    K = np.asarray(K, dtype=float)
+    if b > 0:
+        delta = math.exp(-b * T / m)
+        om = -math.expm1(-b * T / m)
+        alpha, beta = (T - (m / b) * om) / b, ((m / b) * om - T * delta) / b
+    else:
+        delta, alpha, beta = 1.0, T * T / (2 * m), T * T / (2 * m)
+    lhs = np.polymul(np.r_[1.0, np.zeros(d + 2)], np.polymul([1.0, -1.0], [1.0, -delta]))
+    ctrl = (K[:, None] * np.array([1.0, 0, 0]) + (B / T) * np.array([1.0, -1.0, 0])
+            + (M / T ** 2) * np.array([1.0, -2.0, 1.0]))
+    prod = np.zeros((K.size, 4))
+    prod[:, :3] += ctrl * alpha
+    prod[:, 1:] += ctrl * beta
+    p = np.tile(lhs, (K.size, 1))
+    p[:, -4:] += prod
+    out = np.empty(K.size)
+    exact = (p[:, -1] != 0.0) & (K != 0.0)
+    n = p.shape[1] - 1
+    A = np.zeros((int(exact.sum()), n, n))
+    A[:, 1:, :-1] = np.eye(n - 1)
+    A[:, 0, :] = -p[exact, 1:] / p[exact, :1]
+    out[exact] = np.abs(np.linalg.eigvals(A)).max(axis=1)
+    for i in np.flatnonzero(~exact):
+        out[i] = hand_radius(m, b, M, B, float(K[i]), d)
+    return out
+
+
 def loop_radius(device: Device, M: float, B: float, K: float, d: int, acceleration=None, velocity_filter=None) -> float:
     spec = LoopSpec("impedance", (1.0, 1.0), delay_samples=d, velocity_filter=velocity_filter,
                     acceleration=acceleration or AccelerationEstimate())
@@ -89,6 +121,16 @@ def test_the_loop_is_the_hand_built_characteristic_polynomial(M, B, K, d):
     if B == 0 and K == 0:  # the free position's z = 1 (deflated by hand) counts as 1 in the loop
         hand = max(hand, 1.0)
     assert loop_radius(rigid(), M, B, K, d) == pytest.approx(hand, rel=1e-9)
+
+
+@pytest.mark.parametrize(("m", "b", "M", "B", "d"), [(0.5, 2.0, 0.2, 3.0, 1), (0.5, 2.0, -0.1, -1.0, 2),
+                                                     (0.5, 0.0, 0.3, 0.0, 0), (0.4, 1.2, -0.06, 30.0, 1)])
+def test_the_batched_hand_radii_are_the_hand_radius_at_each_stiffness(m, b, M, B, d):
+    """The brute-force scans' batched route (hand_radii) gives hand_radius at every K, including
+    K = 0 (deflated by hand) and a singular object step (M = -(m_e + BT + KT^2) at K = 1e4)."""
+    K = np.r_[0.0, np.geomspace(1.0, 1e9, 100), 1e4]
+    ref = np.array([hand_radius(m, b, M, B, k, d) for k in K])
+    assert hand_radii(m, b, M, B, K, d) == pytest.approx(ref, rel=1e-12)
 
 
 def test_a_brute_force_simulation_grows_at_the_spectral_radius():

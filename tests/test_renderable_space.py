@@ -35,7 +35,7 @@ from analysis.sampled.loop import is_stable
 from analysis.sampled.qualities import accuracy_k, accuracy_mass_limits, stable_radius
 from analysis.sampled.rendered import handle_force_response, handle_transmission
 from analysis.sampled.terminations import god_object_wall
-from test_m_width import hand_radius, loop_radius
+from test_m_width import hand_radii, hand_radius, loop_radius
 
 T = 1e-3
 PROPS = settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -65,7 +65,7 @@ def hand_k_max(m: float, b: float, M: float, B: float, d: int) -> float:
         return hand_radius(m, b, M, B, K, d) - 1.0
 
     grid = np.geomspace(1.0, 1e9, 2000)
-    vals = np.array([g(K) for K in grid])
+    vals = hand_radii(m, b, M, B, grid, d) - 1.0  # g on the whole grid, in one batched call
     if vals[0] > 0:
         return 0.0
     if not np.any(vals > 0):
