@@ -4,6 +4,10 @@ The GUI verdict, ``zwidth analyze`` and the report print every headline number t
 :meth:`Quantity.format`, so the three say the same thing in the same way.  The stability
 reserve (the smallest ``1 - bound/coupling term`` over the band, eq. 9 or 21) is a fraction
 in the data and is printed in per cent everywhere.
+
+:func:`format_number` is the one rule for a number: ASCII (``-1.2e-05``) for what programs read
+(the command line's text, CSV, JSON), typeset (``−1.2×10⁻⁵``, a true minus sign) for what people
+read in the GUI and the report, with the same digits.
 """
 
 from __future__ import annotations
@@ -13,7 +17,8 @@ import re
 from dataclasses import dataclass, replace
 from typing import Any
 
-__all__ = ["Quantity", "QUANTITIES", "J_UNIT", "quantity", "format_number", "rich_numbers", "superscript_numbers", "DIGITS"]
+__all__ = ["Quantity", "QUANTITIES", "J_UNIT", "quantity", "format_number", "rich_numbers", "superscript_numbers", "DIGITS",
+           "STYLES", "ascii_numbers"]
 
 #: significant digits of a printed number unless a quantity says otherwise
 DIGITS = 6
@@ -28,13 +33,17 @@ def _rich(text: str) -> str:
 
 
 _E_NUMBER = re.compile(r"(?<![\w.])(-?\d+(?:\.\d+)?)e([+-]?\d+)(?!\w)")
+#: an ASCII minus of a number in a sentence: before a digit, a decimal point or "∞", not after a word
+#: character, a point or a closing bracket (so "2nd-order", "eq. 10-11", "x-1" and dates keep their hyphen)
+_MINUS = re.compile(r"(?<![\w.)\]])-(?=\.?\d|∞)")
 
 
 def rich_numbers(text: str) -> str:
-    """Every ``1.2e+05`` of a plain text as ``1.2×10<sup>5</sup>`` (Qt rich text / HTML).
+    """Every ``1.2e+05`` of a plain text as ``1.2×10<sup>5</sup>``, every minus sign of a number as
+    "−" (Qt rich text / HTML).
 
-    The way :func:`format_number` prints with ``rich=True``: for a line built from plain numbers
-    that a view also shows as rich text.
+    The way :func:`format_number` prints with ``rich=True``: for a line built from ASCII numbers
+    (a sentence of the analysis, an error message) that a view or the report shows as rich text.
 
     Parameters
     ----------
@@ -46,16 +55,20 @@ def rich_numbers(text: str) -> str:
     str
         The text with every such number typeset as rich text (a true minus sign in the exponent).
     """
-    return _E_NUMBER.sub(lambda m: _rich(f"{m.group(1)}e{m.group(2)}"), text)
+    return _MINUS.sub("−", _E_NUMBER.sub(lambda m: _rich(f"{m.group(1)}e{m.group(2)}"), text))
 
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+_FROM_SUPERSCRIPT = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
 
 
 def superscript_numbers(text: str) -> str:
-    """Every ``2.55e+11`` of a plain text as ``2.55×10¹¹`` in Unicode superscripts.
+    """Every ``2.55e+11`` of a plain text as ``2.55×10¹¹`` in Unicode superscripts, every minus sign
+    of a number as "−".
 
-    The same typesetting for places that show plain text only (a plot's text items).
+    The typesetting of :func:`format_number`'s ``style="text"`` for a sentence built from ASCII
+    numbers (e.g. :func:`~analysis.study.optimum_verdict`, which the command line prints too) where
+    the GUI shows plain text only (a plot's text items, a tool tip).
 
     Parameters
     ----------
@@ -68,21 +81,64 @@ def superscript_numbers(text: str) -> str:
         The text with every such number written with a superscript exponent and a true minus
         sign.
     """
+    return _MINUS.sub("−", _E_NUMBER.sub(lambda m: _text(f"{m.group(1)}e{m.group(2)}"), text))
+
+
+_TEXT_NUMBER = re.compile(r"(−?\d+(?:\.\d+)?)×10([⁻]?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)")
+
+
+def ascii_numbers(text: str) -> str:
+    """The inverse of :func:`superscript_numbers`: every ``−2.55×10⁻¹¹`` of a text as ``-2.55e-11``
+    and every "−" as "-" (the ASCII form of :func:`format_number`, for files scripts read: a CSV's
+    comment lines carry a plot's notes).
+
+    Parameters
+    ----------
+    text : str
+        Text with numbers in the ``"text"`` style.
+
+    Returns
+    -------
+    str
+        The text with ASCII numbers, as ``format_number(x)`` prints them.
+    """
     def sub(m: re.Match) -> str:
-        return f"{m.group(1).replace('-', '−')}×10{str(int(m.group(2))).translate(_SUPERSCRIPT)}"
+        return f"{m.group(1)}e{int(m.group(2).translate(_FROM_SUPERSCRIPT)):+03d}"
 
-    return _E_NUMBER.sub(sub, text)
+    return _TEXT_NUMBER.sub(sub, text).replace("−", "-")
 
 
-def format_number(value: Any, digits: int = DIGITS, *, scale: float = 1.0, rich: bool = False) -> str:
+#: the three ways a number is printed: ``"ascii"`` for what scripts read (``zwidth analyze``'s text,
+#: CSV, JSON, the report's number table), ``"text"`` for plain text a person reads in the GUI and the
+#: report (legends, status and tool tips, notes, tab labels), ``"rich"`` for Qt rich text / HTML
+STYLES = ("ascii", "text", "rich")
+
+
+def _text(text: str) -> str:
+    """``-1.2e-05`` -> ``−1.2×10⁻⁵``: a true minus sign and a superscript exponent (plain Unicode text)."""
+    if "e" in text:
+        mant, exp = text.split("e")
+        text = f"{mant}×10{str(int(exp)).translate(_SUPERSCRIPT)}"
+    return text.replace("-", "−")
+
+
+def format_number(value: Any, digits: int = DIGITS, *, scale: float = 1.0, rich: bool = False,
+                  style: str | None = None) -> str:
     """A number as zwidth prints it.
 
     ``None`` -> "infeasible", NaN -> "n/a", +-inf -> "∞"/"-∞", booleans -> "yes"/"no", else
-    ``digits`` significant digits.  ``rich`` (Qt rich text / HTML) typesets the exponent
-    (``1.2×10<sup>5</sup>``) and the minus sign (``−``).
+    ``digits`` significant digits (Python's ``g`` format: ``1.2e+05``, ``-3.2``).
 
     The one rule: the GUI's views, the verdict, ``zwidth analyze`` and the report all print
-    numbers through it.
+    numbers through it, in one of three styles with the same digits:
+
+    - ``"ascii"`` (the default): what scripts parse, an ASCII hyphen-minus and ``e`` exponent
+      (``-1.2e-05``): the command line's text, CSV and JSON, the report's number table.
+    - ``"text"``: plain text a person reads (plot legends and notes, status and tool tips, tab
+      labels, sentences in the GUI): a true minus sign "−" (U+2212) and a superscript power of
+      ten (``−1.2×10⁻⁵``, ``−∞``).
+    - ``"rich"`` (or ``rich=True``): Qt rich text / HTML, the same typesetting with ``<sup>``
+      (``−1.2×10<sup>−5</sup>``).
 
     Parameters
     ----------
@@ -93,13 +149,24 @@ def format_number(value: Any, digits: int = DIGITS, *, scale: float = 1.0, rich:
     scale : float, optional
         Factor applied before printing (100 prints a fraction in per cent).
     rich : bool, optional
-        Qt rich text / HTML instead of plain text.
+        Qt rich text / HTML instead of plain text: the same as ``style="rich"``.
+    style : str or None, optional
+        One of :data:`STYLES`; ``None`` is ``"rich"`` with ``rich=True``, else ``"ascii"``.
 
     Returns
     -------
     str
         The printed number, without a unit.
+
+    Raises
+    ------
+    ValueError
+        For an unknown style, or ``rich=True`` with another style.
     """
+    if style is None:
+        style = "rich" if rich else "ascii"
+    elif style not in STYLES or (rich and style != "rich"):
+        raise ValueError(f"style must be one of {STYLES} (rich=True with 'rich' only), not {style!r}")
     if value is None:
         return "infeasible"
     if isinstance(value, bool) or type(value).__name__ == "bool_":
@@ -108,9 +175,9 @@ def format_number(value: Any, digits: int = DIGITS, *, scale: float = 1.0, rich:
     if math.isnan(x):
         return "n/a"
     if math.isinf(x):
-        return "∞" if x > 0 else ("−∞" if rich else "-∞")
+        return "∞" if x > 0 else ("-∞" if style == "ascii" else "−∞")
     text = f"{x * scale:.{digits}g}"
-    return _rich(text) if rich else text
+    return {"ascii": text, "text": _text(text), "rich": _rich(text)}[style]
 
 
 @dataclass(frozen=True)
@@ -140,7 +207,7 @@ class Quantity:
     digits: int = DIGITS
     scale: float = 1.0  # printed value = value * scale (100 for a fraction printed in %)
 
-    def number(self, value: Any, *, rich: bool = False) -> str:
+    def number(self, value: Any, *, rich: bool = False, style: str | None = None) -> str:
         """The printed number without its unit.
 
         Parameters
@@ -149,15 +216,17 @@ class Quantity:
             The value in the data's units (a fraction for a per-cent quantity), or ``None``.
         rich : bool, optional
             Qt rich text / HTML instead of plain text.
+        style : str or None, optional
+            ``"ascii"``, ``"text"`` or ``"rich"``, as :func:`format_number`.
 
         Returns
         -------
         str
             The number as :func:`format_number` prints it with this quantity's digits and scale.
         """
-        return format_number(value, self.digits, scale=self.scale, rich=rich)
+        return format_number(value, self.digits, scale=self.scale, rich=rich, style=style)
 
-    def format(self, value: Any, *, unit: bool = True, rich: bool = False) -> str:
+    def format(self, value: Any, *, unit: bool = True, rich: bool = False, style: str | None = None) -> str:
         """The printed number with its unit (none after "∞" or a word such as "infeasible").
 
         Parameters
@@ -168,13 +237,15 @@ class Quantity:
             Append the unit (default ``True``).
         rich : bool, optional
             Qt rich text / HTML instead of plain text.
+        style : str or None, optional
+            ``"ascii"``, ``"text"`` or ``"rich"``, as :func:`format_number`.
 
         Returns
         -------
         str
             The printed number, followed by the unit for a finite value.
         """
-        text = self.number(value, rich=rich)
+        text = self.number(value, rich=rich, style=style)
         finite = value is not None and not isinstance(value, bool) and math.isfinite(float(value))
         return f"{text} {self.unit}" if unit and self.unit and finite else text
 
@@ -184,8 +255,8 @@ class Quantity:
         Parameters
         ----------
         text : str
-            Plain text as :meth:`format` prints it, with or without its unit; "∞", "-∞", "n/a"
-            and the older spelling "unbounded" are read too.
+            Plain text as :meth:`format` prints it (``"ascii"`` or ``"text"`` style), with or
+            without its unit; "∞", "-∞", "n/a" and the older spelling "unbounded" are read too.
 
         Returns
         -------
@@ -202,6 +273,9 @@ class Quantity:
                    "unbounded": math.inf, "-unbounded": -math.inf}  # the spelling before the one "∞"
         if word in special:
             return special[word]
+        if "×10" in word:  # the "text" style: −1.2×10⁻⁵
+            mant, exp = word.split("×10")
+            word = f"{mant}e{exp.translate(_FROM_SUPERSCRIPT)}"
         return float(word.replace("−", "-")) / self.scale
 
 

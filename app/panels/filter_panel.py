@@ -18,7 +18,7 @@ from PySide6.QtWidgets import QGroupBox, QLabel, QVBoxLayout, QWidget
 
 from analysis.chain.velocity_filter import VelocityFilter, highest_cutoff
 from analysis.profiles.model import Profile
-from analysis.study import controller_section
+from analysis.study import controller_section, format_number
 
 from app.core.commands import Editor
 from app.core.model import ProfileModel
@@ -107,5 +107,6 @@ class FilterPanel(QGroupBox):
         vf = self.filter()
         self.cutoff.setEnabled(not vf.is_backward)
         nyq = 0.5 / self._model.device.sample_time
-        self.note.setText(f"{vf.label()}  (ω_f = {vf.cutoff:.4g} rad/s; Nyquist {nyq:.4g} Hz)"
-                          if not vf.is_backward else f"{vf.label()}  (Nyquist {nyq:.4g} Hz)")
+        nyquist = f"Nyquist {format_number(nyq, 4, style='text')} Hz"
+        self.note.setText(f"{vf.label()}  (ω_f = {format_number(vf.cutoff, 4, style='text')} rad/s; {nyquist})"
+                          if not vf.is_backward else f"{vf.label()}  ({nyquist})")

@@ -178,7 +178,8 @@ class IdentifyPanel(QWidget):
     @staticmethod
     def _row_text(path: str, loaded: LoadedMeasurement) -> str:
         m = loaded.measurement
-        timing = "continuous" if m.sample_time is None else f"T = {m.sample_time * 1e3:g} ms, d = {m.delay_samples}"
+        timing = ("continuous" if m.sample_time is None else
+                  f"T = {format_number(m.sample_time * 1e3, style='text')} ms, d = {m.delay_samples}")
         if loaded.sample_time_source == SAMPLE_TIME_STEP:
             timing += " (the time series' own step)"
         return f"{os.path.basename(path)} — {m.quantity}, {m.boundary}, {timing}, {m.size} points"

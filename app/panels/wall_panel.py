@@ -13,7 +13,7 @@ import math
 from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QComboBox, QGridLayout, QGroupBox, QPushButton, QWidget
 
-from analysis.study import default_bc, wall_settings
+from analysis.study import default_bc, format_number, wall_settings
 
 from app.core.commands import Editor
 from app.core.model import ProfileModel
@@ -133,6 +133,6 @@ class WallPanel(QGroupBox):
         """The button's text (the robust optimum, or none) and whether it can be used now."""
         self.optimum_button.setEnabled(enabled and bc is not None)
         if bc is not None:
-            self.optimum_button.setText(f"Use robust optimum ({bc:.4g})")
+            self.optimum_button.setText(f"Use robust optimum ({format_number(bc, 4, style='text')})")
         else:
             self.optimum_button.setText("Use robust optimum (none)")

@@ -269,7 +269,7 @@ def _verdict(h: Headline, profile: Profile) -> Part:
     verdict_text = f"<b>{h.question}: {'unconditionally stable' if h.stable else 'NOT unconditionally stable'}</b>"
     return _headline_part(h, _VERDICT_ROWS, HEADLINE_KEYS, "Verdict", (
         f"{verdict_text} for every passive operator and environment, over the band "
-        f"[{num(dev.band_min)}, {num(dev.nyquist)}) rad/s.",))
+        f"[{num(dev.band_min, rich=True)}, {num(dev.nyquist, rich=True)}) rad/s.",))
 
 
 def _designs(h: Headline) -> Part:

@@ -48,12 +48,12 @@ def _rows(profile: Profile, numbers: Numbers, trusted: bool = True) -> tuple[Row
     for key, (lo, hi) in profile.identification.intervals.items():
         label, unit = parameter_label(key)
         value = _value(profile, key)
-        text = format_number(value)
-        numbers[f"identify.{key}"] = (value, text)
+        numbers[f"identify.{key}"] = (value, format_number(value))
         numbers[f"identify.{key}.low"] = (lo, format_number(lo))
         numbers[f"identify.{key}.high"] = (hi, format_number(hi))
         rows.append(Row(f"{label} <code>{html.escape(key)}</code>, {what} "
-                        f"[{format_number(lo)}, {format_number(hi)}]", "", text, unit))
+                        f"[{format_number(lo, rich=True)}, {format_number(hi, rich=True)}]", "", format_number(value, rich=True),
+                        unit))
     return tuple(rows)
 
 
@@ -62,7 +62,8 @@ def _robust_row(numbers: Numbers, key: str, label: str, value: float | None, bey
     """One robust design row: the number, or the phrase when it is beyond its field's physical range."""
     text = format_number(value) if beyond is None else beyond.text()
     numbers[key] = (value, text)
-    return Row(label, "", text if beyond is None else beyond.text(rich=True), unit if beyond is None else "")
+    return Row(label, "", format_number(value, rich=True) if beyond is None else beyond.text(rich=True),
+               unit if beyond is None else "")
 
 
 def _robust_rows(rd: RobustDesigns | None, numbers: Numbers) -> tuple[tuple[Row, ...], str]:
@@ -80,7 +81,7 @@ def _robust_rows(rd: RobustDesigns | None, numbers: Numbers) -> tuple[tuple[Row,
                                            s.nominal_kc, "")):
             rows.append(_robust_row(numbers, key, label, value, beyond.get(design), "N/m"))
         numbers["robust.bc"] = (s.bc, format_number(s.bc))
-        rows.append(Row("at coupling damping b<sub>c</sub>", "", format_number(s.bc), "N&middot;s/m"))
+        rows.append(Row("at coupling damping b<sub>c</sub>", "", format_number(s.bc, rich=True), "N&middot;s/m"))
         binding = s.binding
     else:
         d = rd.damping
@@ -92,7 +93,7 @@ def _robust_rows(rd: RobustDesigns | None, numbers: Numbers) -> tuple[tuple[Row,
         binding = {**d.low_binding}
     for key, value in binding.items():
         label, unit = parameter_label(key)
-        rows.append(Row(f"binding device: {label}", "", format_number(value), unit))
+        rows.append(Row(f"binding device: {label}", "", format_number(value, rich=True), unit))
     verdict = html.escape(rd.verdict())
     cls = "ok" if rd.holds else "bad"
     return tuple(rows), f"<b class='{cls}'>{verdict}</b>"

@@ -20,9 +20,8 @@ __all__ = ["renderable_part"]
 
 
 def _row(numbers: Numbers, key: str, label: str, value: float, unit: str) -> Row:
-    text = format_number(value)
-    numbers[key] = (value, text)
-    return Row(label, "", text, unit)
+    numbers[key] = (value, format_number(value))  # the number table: ASCII, as the CLI prints it
+    return Row(label, "", format_number(value, rich=True), unit)
 
 
 def renderable_part(profile: Profile) -> Part:
@@ -47,14 +46,18 @@ def renderable_part(profile: Profile) -> Part:
     rows.append(_row(numbers, "renderable.k_max_at_environment", "largest K at the rendered (M, B), nearest grid point",
                      k, "N/m"))
     names = ", ".join(QUALITY_LABELS[q] for q in w.qualities)
+
+    def num(x: float) -> str:  # a number of the page's HTML
+        return format_number(x, rich=True)
+
     par = (f"The impedance display renders F = M&nbsp;&acirc; + B&nbsp;v&#770; + K&nbsp;x with the acceleration "
            f"estimate {html.escape(sec.acceleration.label())}. Qualities asked: {html.escape(names)} (grasps: "
            f"{html.escape(GRASP_SETS[sec.grasps])}). The M-width (Colonnese &amp; Okamura) is the interval of "
            f"virtual masses rendered with them at B = K = 0; the renderable space (Colonnese &amp; Chan) is the "
            f"largest K for each (M, B) of a {sp.mass.size} &times; {sp.damping.size} grid, M from "
-           f"{format_number(sp.mass[0])} to {format_number(sp.mass[-1])} kg, B from {format_number(sp.damping[0])} "
-           f"to {format_number(sp.damping[-1])} N&middot;s/m. The rendered environment is M = "
-           f"{format_number(sec.virtual_mass)} kg, B = {format_number(sec.virtual_damping)} N&middot;s/m, K = "
-           f"{format_number(sec.virtual_stiffness)} N/m.")
+           f"{num(sp.mass[0])} to {num(sp.mass[-1])} kg, B from {num(sp.damping[0])} "
+           f"to {num(sp.damping[-1])} N&middot;s/m. The rendered environment is M = "
+           f"{num(sec.virtual_mass)} kg, B = {num(sec.virtual_damping)} N&middot;s/m, K = "
+           f"{num(sec.virtual_stiffness)} N/m.")
     return Part((Section("Renderable space and M-width", (par,), tuple(rows)),), numbers,
                 {"renderable_study": study})

@@ -67,13 +67,15 @@ def workspace_part(profile: Profile) -> Part:
             row(numbers, "workspace.mass_max", "at the handle: heaviest effective mass", "m<sub>2</sub>",
                 pt.principal_masses[-1], "kg"),
         ]
-    par = (f"The planar five-bar (links {format_number(sec.l1)} m and {format_number(sec.l2)} m, motors "
-           f"{format_number(sec.base)} m apart) is linearized at each of {sec.x_points} &times; {sec.y_points} handle "
-           f"positions, x from {format_number(sec.x_min)} to {format_number(sec.x_max)} m, y from "
-           f"{format_number(sec.y_min)} to {format_number(sec.y_max)} m; the exact sampled loop of the impedance "
-           f"display is checked against a wall of damping {format_number(sec.wall_damping)} N&middot;s/m, isotropic "
+    v = {name: format_number(getattr(sec, name), rich=True) for name in
+         ("l1", "l2", "base", "x_min", "x_max", "y_min", "y_max", "wall_damping", "handle_x", "handle_y")}
+    par = (f"The planar five-bar (links {v['l1']} m and {v['l2']} m, motors "
+           f"{v['base']} m apart) is linearized at each of {sec.x_points} &times; {sec.y_points} handle "
+           f"positions, x from {v['x_min']} to {v['x_max']} m, y from "
+           f"{v['y_min']} to {v['y_max']} m; the exact sampled loop of the impedance "
+           f"display is checked against a wall of damping {v['wall_damping']} N&middot;s/m, isotropic "
            f"and along {m.directions} plane-wall normals at each point. The design bound is the smallest critical "
-           f"stiffness over the workspace, refined at its point. The handle is at ({format_number(sec.handle_x)}, "
-           f"{format_number(sec.handle_y)}) m; the profile's wall is the {html.escape(WALL_KINDS[sec.wall_kind])}."
+           f"stiffness over the workspace, refined at its point. The handle is at ({v['handle_x']}, "
+           f"{v['handle_y']}) m; the profile's wall is the {html.escape(WALL_KINDS[sec.wall_kind])}."
            + note)
     return Part((Section("Multi-DOF workspace", (par,), tuple(rows)),), numbers, results)

@@ -22,6 +22,7 @@ from analysis.study import (
     profile_trials,
     trial_score,
     region_wall,
+    rich_numbers,
     zwidth_region_result,
 )
 from app.report.model import Numbers, Part, Row, Section
@@ -49,9 +50,8 @@ def zwidth_results(profile: Profile, *, optimum: bool = True) -> dict[str, Any]:
 
 
 def _row(numbers: Numbers, key: str, label: str, value: float, unit: str) -> Row:
-    text = format_number(value)
-    numbers[key] = (value, text)
-    return Row(label, "", text, unit)
+    numbers[key] = (value, format_number(value))  # the number table: ASCII, as the CLI prints it
+    return Row(label, "", format_number(value, rich=True), unit)
 
 
 def zwidth_part(profile: Profile) -> Part:
@@ -78,19 +78,20 @@ def zwidth_part(profile: Profile) -> Part:
         rows.append(_row(numbers, "zwidth.current_area", f"{opt.criterion} with the current filter (linear)",
                          opt.current_area, "N&sup2;&middot;s/m&sup2;"))
     par = (f"Velocity estimate: {html.escape(sec.velocity_filter.label())}. The exact stable region of the "
-           f"virtual wall (B, K) = (b<sub>c</sub>, k<sub>c</sub>) over B from {format_number(sec.b_range[0])} to "
-           f"{format_number(sec.b_range[1])} N&middot;s/m (hands-off against the god-object wall, Colgate &amp; "
-           f"Brown), with the passive region (Colgate &amp; Schenkel) and eq. (9)'s limit. The optimizer maximizes "
+           f"virtual wall (B, K) = (b<sub>c</sub>, k<sub>c</sub>) over B from "
+           f"{format_number(sec.b_range[0], rich=True)} to {format_number(sec.b_range[1], rich=True)} N&middot;s/m "
+           f"(hands-off against the god-object wall, Colgate &amp; Brown), with the passive region (Colgate &amp; "
+           f"Schenkel) and eq. (9)'s limit. The optimizer maximizes "
            f"the linear {opt.criterion} over the cut-off (Chawda et al.) and compares it with no filter and the "
-           f"current filter: {html.escape(optimum_verdict(opt))} The current wall "
-           f"({format_number(b)} N&middot;s/m, {format_number(k)} N/m) is "
+           f"current filter: {rich_numbers(html.escape(optimum_verdict(opt)))} The current wall "
+           f"({format_number(b, rich=True)} N&middot;s/m, {format_number(k, rich=True)} N/m) is "
            f"{'inside' if region.stable(b, k) else 'outside'} the region.")
     after: list[str] = []
     if region.force_noise is not None:
-        after.append(f"Noise criterion: encoder resolution {format_number(sec.encoder_resolution)} m, force-noise "
-                     f"tolerance {format_number(region.force_noise)} N rms; walls with B above "
-                     f"{format_number(region.b_noise)} N&middot;s/m (B&middot;&sigma;<sub>v</sub> of the quantization "
-                     f"noise over the tolerance) are counted as not renderable.")
+        after.append(f"Noise criterion: encoder resolution {format_number(sec.encoder_resolution, rich=True)} m, "
+                     f"force-noise tolerance {format_number(region.force_noise, rich=True)} N rms; walls with B above "
+                     f"{format_number(region.b_noise, rich=True)} N&middot;s/m (B&middot;&sigma;<sub>v</sub> of the "
+                     f"quantization noise over the tolerance) are counted as not renderable.")
     if study.score is not None and study.trials is not None:
         s = study.score
         numbers["zwidth.trials_wrong"] = (float(s.wrong_count), str(s.wrong_count))

@@ -193,8 +193,8 @@ class IdentifyTab(AnalysisTab):
         self.bode.show_pairs(list(zip(res.measurements, fit.responses)))  # each quantity in its unit
         self.parameters.show_fit(fit)
         self.orders.show_orders(res.orders)
-        notes = [f"Residual {format_number(fit.residual, 3)} (RMS of the weighted log-response), "
-                 f"AIC {format_number(fit.aic)}, BIC {format_number(fit.bic)}"
+        notes = [f"Residual {format_number(fit.residual, 3, style='text')} (RMS of the weighted log-response), "
+                 f"AIC {format_number(fit.aic, style='text')}, BIC {format_number(fit.bic, style='text')}"
                  + ("" if fit.converged else " — did NOT converge")]
         if fit.bins:
             notes.append(f"Bins: {bins_summary(fit)}")
@@ -247,11 +247,11 @@ class IdentifyTab(AnalysisTab):
         if designs.stiffness is not None and designs.stiffness.kc is not None:
             b = ", ".join(f"{k} = {_rich(v)}" for k, v in designs.stiffness.binding.items())
             nominal = designs.stiffness.nominal_kc
-            extra = (f"<br>Robust largest k<sub>c</sub> at b<sub>c</sub> = {designs.stiffness.bc:g} N·s/m: "
+            extra = (f"<br>Robust largest k<sub>c</sub> at b<sub>c</sub> = {_rich(designs.stiffness.bc)} N·s/m: "
                      f"{value('kc_max', designs.stiffness.kc, 'N/m')} (nominal {_rich(nominal)} N/m); "
                      f"binding device: {b}")
         elif designs.damping is not None and designs.damping.low is not None:
-            extra = (f"<br>Robust b<sub>c</sub> interval for m<sub>c</sub> = {designs.damping.mc:g} kg: "
+            extra = (f"<br>Robust b<sub>c</sub> interval for m<sub>c</sub> = {_rich(designs.damping.mc)} kg: "
                      + (f"[{_rich(designs.damping.low)}, {_rich(designs.damping.high)}] N·s/m" if not beyond else
                         f"[{value('bc_low', designs.damping.low, 'N·s/m')}, "
                         f"{value('bc_high', designs.damping.high, 'N·s/m')}]"))

@@ -68,8 +68,8 @@ def width_text(study: RenderableStudy, quality: str = "all") -> str:
     """The M-width in words, ``"M-width (stable): −0.2202 to 0.7051 kg (0.9253 kg)"``."""
     w = study.width
     lo, hi = (w.m_min, w.m_max) if quality == "all" else w.by_quality[quality]
-    return (f"M-width ({QUALITY_LABELS[quality]}): {format_number(lo)} to {format_number(hi)} kg "
-            f"({format_number(hi - lo)} kg)")
+    return (f"M-width ({QUALITY_LABELS[quality]}): {format_number(lo, style='text')} to "
+            f"{format_number(hi, style='text')} kg ({format_number(hi - lo, style='text')} kg)")
 
 
 class RenderableTab(AsyncJobs, AnalysisTab):
@@ -270,19 +270,19 @@ class RenderableTab(AsyncJobs, AnalysisTab):
         sec = renderable_section(self.ctx.model.profile)
         k = k_max_at(study.space, sec.virtual_mass, sec.virtual_damping, quality)
         where = ("outside the grid" if math.isnan(k) else
-                 f"K_max = {format_number(k)} N/m at the nearest grid point, so K = "
-                 f"{format_number(sec.virtual_stiffness)} N/m is "
+                 f"K_max = {format_number(k, style='text')} N/m at the nearest grid point, so K = "
+                 f"{format_number(sec.virtual_stiffness, style='text')} N/m is "
                  f"{'renderable' if 0 < sec.virtual_stiffness <= k or (sec.virtual_stiffness == 0 and k > 0) else 'not renderable'}")
         lines = [width_text(study, quality),
-                 f"Volume of the space: {format_number(study.space.volume)} kg·decades²",
-                 f"Rendered (M, B) = ({format_number(sec.virtual_mass)} kg, "
-                 f"{format_number(sec.virtual_damping)} N·s/m): {where}."]
+                 f"Volume of the space: {format_number(study.space.volume, style='text')} kg·decades²",
+                 f"Rendered (M, B) = ({format_number(sec.virtual_mass, style='text')} kg, "
+                 f"{format_number(sec.virtual_damping, style='text')} N·s/m): {where}."]
         robust = self.space_view.robust if self.space_view.robust_drawn else None
         if robust is not None:
             kr = k_max_at(robust, sec.virtual_mass, sec.virtual_damping, quality)
-            lines.append(f"Robust over {self.space_view.robust_label}: volume {format_number(robust.volume)} "
-                         f"kg·decades²" + ("" if math.isnan(kr) else f", K_max = {format_number(kr)} N/m there")
-                         + ".")
+            lines.append(f"Robust over {self.space_view.robust_label}: volume "
+                         f"{format_number(robust.volume, style='text')} kg·decades²"
+                         + ("" if math.isnan(kr) else f", K_max = {format_number(kr, style='text')} N/m there") + ".")
         elif self._robust_on():
             lines.append("Computing the robust space over the identified box…")
         return "\n".join([*lines, "Click the map to set the rendered (M, B)."])

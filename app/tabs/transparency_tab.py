@@ -52,7 +52,7 @@ from app.widgets.task_progress import TASK_TITLES
 from app.tabs.base import AnalysisTab, scroll_body
 from app.tabs.held_plots import HeldPlots
 from analysis.study.citations import EOM
-from analysis.study.quantities import J_UNIT
+from analysis.study.quantities import J_UNIT, rich_numbers
 from app.widgets.citation_note import CitationNote
 from app.widgets.rich_text_pane import RichTextPane, scrolling_pane
 from app.widgets.text_pacer import TextPacer
@@ -258,11 +258,11 @@ class TransparencyTab(HeldPlots, AnalysisTab):
         self.index_plot.set_legend_text("current", f"B<sub>c</sub> = {fmt(point.bc)}: J = "
                                         f"{fmt(point.index.index) if point.index.finite else '∞'}")
         self.peak_plot.set_legend_text("current", f"B<sub>c</sub> = {fmt(point.bc)}: "
-                                       f"{point.peak.gain_db:+.2f} dB")
+                                       f"{rich_numbers(f'{point.peak.gain_db:+.2f}')} dB")
         if trade is not None and trade.optimum.feasible:
             o = trade.optimum
             self.index_plot.set_legend_text("optimum", f"robust optimum B<sub>c</sub> = {fmt(o.bc)}")
-            self.peak_plot.set_legend_text("optimum", f"robust optimum: {20 * math.log10(o.peak):+.2f} dB")
+            self.peak_plot.set_legend_text("optimum", f"robust optimum: {rich_numbers(f'{20 * math.log10(o.peak):+.2f}')} dB")
 
     def _draw_admittance(self, adm: WallAdmittances) -> None:
         self.admittance_plot.set_curve("yv", adm.w, np.abs(adm.yv))

@@ -43,7 +43,7 @@ TITLES = {WORKSPACE_MAP_NODE: "Workspace map"}
 
 
 def _angle(n: Any) -> str:
-    return format_number(math.degrees(math.atan2(float(n[1]), float(n[0]))) % 180.0, 3)
+    return format_number(math.degrees(math.atan2(float(n[1]), float(n[0]))) % 180.0, 3, style='text')
 
 
 def summary_text(m: WorkspaceMap | None, point: WorkspacePoint | str | None) -> str:
@@ -53,16 +53,18 @@ def summary_text(m: WorkspaceMap | None, point: WorkspacePoint | str | None) -> 
         lines.append("Computing the workspace map…")
     else:
         b = m.minimum
-        lines.append(f"Design bound: {format_number(b.stiffness)} N/m at ({format_number(b.position[0])}, "
-                     f"{format_number(b.position[1])}) m, wall normal at {_angle(b.normal)}°.")
+        lines.append(f"Design bound: {format_number(b.stiffness, style='text')} N/m at "
+                     f"({format_number(b.position[0], style='text')}, {format_number(b.position[1], style='text')}) m, "
+                     f"wall normal at {_angle(b.normal)}°.")
     if isinstance(point, str):
         lines.append(f"At the handle: {point}")
     elif point is not None:
-        wall = "" if point.normal is None else f", the profile's wall {format_number(point.wall)} N/m"
-        lines.append(f"At the handle: isotropic wall {format_number(point.isotropic)} N/m{wall}, worst plane wall "
-                     f"{format_number(point.worst.stiffness)} N/m with its normal at {_angle(point.worst.normal)}°; "
-                     f"effective masses {format_number(point.principal_masses[0])} to "
-                     f"{format_number(point.principal_masses[-1])} kg.")
+        wall = "" if point.normal is None else f", the profile's wall {format_number(point.wall, style='text')} N/m"
+        lines.append(f"At the handle: isotropic wall {format_number(point.isotropic, style='text')} N/m{wall}, "
+                     f"worst plane wall {format_number(point.worst.stiffness, style='text')} N/m with its normal at "
+                     f"{_angle(point.worst.normal)}°; effective masses "
+                     f"{format_number(point.principal_masses[0], style='text')} to "
+                     f"{format_number(point.principal_masses[-1], style='text')} kg.")
     lines.append("Click the map to move the handle.")
     return "\n".join(lines)
 

@@ -38,7 +38,8 @@ from PySide6.QtWidgets import (
 from analysis import ValidationError
 from analysis.chain.velocity_filter import VelocityFilter
 from analysis.sampled import DEFAULT_FORCE_NOISE, load_trials
-from analysis.study import controller_section, format_number, optimum_verdict, region_wall, trial_score, wall_edits
+from analysis.study import (controller_section, format_number, optimum_verdict, region_wall, superscript_numbers,
+                            trial_score, wall_edits)
 
 from app.core import nodes_zwidth
 from app.core.compute_graph import ComputeGraph
@@ -233,7 +234,7 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         offer = self._offer()
         self.apply_button.setText(offer_text(offer))
         self.apply_button.setEnabled(offer is not None)
-        self.apply_button.setToolTip(APPLY_TIP if opt is None else optimum_verdict(opt))
+        self.apply_button.setToolTip(APPLY_TIP if opt is None else superscript_numbers(optimum_verdict(opt)))
 
     @Slot()
     def _on_import(self) -> None:
@@ -338,7 +339,7 @@ def offer_text(offer: VelocityFilter | None) -> str:
         return APPLY_TEXT
     if offer.is_backward:
         return "Remove the filter"
-    return f"{APPLY_TEXT} ({format_number(offer.cutoff / (2 * math.pi), 4)} Hz)"
+    return f"{APPLY_TEXT} ({format_number(offer.cutoff / (2 * math.pi), 4, style='text')} Hz)"
 
 
 def _column(*widgets: QWidget) -> QWidget:

@@ -15,7 +15,7 @@ from PySide6.QtGui import QAction, QColor, QFont, QPainter
 from PySide6.QtWidgets import QGraphicsItem, QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
 from analysis.study.displays import DisplayKind
-from analysis.study.quantities import format_number
+from analysis.study.quantities import format_number, superscript_numbers
 
 from app.widgets.colors import CURSOR_COLORS, PALETTE, WARNING_COLORS
 from app.views.legend_row import LegendRow
@@ -64,8 +64,10 @@ def fmt(x: float | None, digits: int = 4) -> str:
 
 
 def plain(x: float | None, digits: int = 4) -> str:
-    """A number for plain-text labels: :func:`analysis.study.format_number` (``1.171e+05``, "∞")."""
-    return format_number(x, digits)
+    """A number for plain-text labels a person reads (legends, notes, the cursor's status text):
+    :func:`analysis.study.format_number` with ``style="text"`` (``−1.171×10⁵``, a true minus, "∞").
+    A CSV's column names use the ASCII form (``format_number(x, digits)``) instead."""
+    return format_number(x, digits, style="text")
 
 
 #: The largest magnitude a plot draws (far beyond any physical value of the app; spans stay finite).
@@ -98,7 +100,11 @@ def decade_label(exponent: int) -> str:
 
 
 class LogAxis(pg.AxisItem):
-    """An axis whose log-mode labels are decades only (plus 2 and 5 when under two decades show)."""
+    """An axis whose log-mode labels are decades only (plus 2 and 5 when under two decades show); its
+    linear-mode labels typeset as the views' other text (a true minus "−", ``1×10⁵``)."""
+
+    def tickStrings(self, values: list[float], scale: float, spacing: float) -> list[str]:  # noqa: N802
+        return [superscript_numbers(text) for text in super().tickStrings(values, scale, spacing)]
 
     def logTickStrings(self, values: list[float], scale: float, spacing: float) -> list[str]:  # noqa: N802
         vals = np.asarray(values, float) + np.log10(scale)

@@ -309,8 +309,8 @@ class OrderTable(_Table):
         for r, n in enumerate(orders.n):
             err = orders.errors[r]
             best = "lowest BIC" if orders.best_bic == int(n) else ""
-            cells = (str(int(n)), format_number(orders.aic[r]), format_number(orders.bic[r]),
-                     format_number(orders.residual[r], 4), best if err is None else "not fitted")
+            cells = (str(int(n)), format_number(orders.aic[r], style="text"), format_number(orders.bic[r], style="text"),
+                     format_number(orders.residual[r], 4, style="text"), best if err is None else "not fitted")
             for c, text in enumerate(cells):
                 self.setItem(r, c, _item(text, err or ""))
 

@@ -31,6 +31,7 @@ from PySide6.QtCore import QByteArray, QBuffer, QIODevice, QRectF, QSize
 from PySide6.QtGui import QColor, QImage, QPainter, QPicture
 
 from analysis.profiles import WriteError, atomic_write
+from analysis.study.quantities import ascii_numbers
 
 from app.views.base import Axis, PlotView
 from app.views.render import render_view, settle_layout
@@ -161,8 +162,8 @@ def csv_field(value: float) -> str:
 
 
 def _notes(out: io.StringIO, notes: Sequence[str]) -> None:
-    for note in notes:  # e.g. why a chart is empty: "# note: ..." before the header
-        out.write("# note: " + " ".join(note.split()) + "\n")
+    for note in notes:  # e.g. why a chart is empty: "# note: ..." before the header, its numbers in ASCII
+        out.write("# note: " + " ".join(ascii_numbers(note).split()) + "\n")
 
 
 def csv_text(view: PlotView) -> str:

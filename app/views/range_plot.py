@@ -18,9 +18,9 @@ from PySide6.QtGui import QPainterPath
 from PySide6.QtWidgets import QGraphicsPathItem, QWidget
 
 from analysis import StabilityResult
-from analysis.study import display_kind, rich_numbers, superscript_numbers
+from analysis.study import display_kind, superscript_numbers
 
-from app.views.base import Axis, PlotView, Series, clean_xy, plain, rich_label
+from app.views.base import Axis, PlotView, Series, clean_xy, fmt, plain, rich_label
 
 __all__ = ["RangePlot", "band_segments", "interest_mask", "set_data", "set_text", "TAIL_FRACTION", "TAIL_JUMP", "BMIN_DECADES"]
 
@@ -159,7 +159,7 @@ class RangePlot(PlotView):
             self._series.append(Series("k_max/ω", omega, Axis("k_max/ω", z.unit), xk, yk))
         else:
             self.kmax_curve.setData([], [])
-        self.set_legend_text(self.kmax_curve, f"k<sub>max</sub>/ω ({rich_numbers(plain(km))} N/m)")
+        self.set_legend_text(self.kmax_curve, f"k<sub>max</sub>/ω ({fmt(km)} N/m)")
         lo, hi = self.default_y
         below = bool(np.isfinite(bm) and bm > 0 and np.isfinite(lo)
                      and math.log10(lo) - math.log10(bm) > BMIN_DECADES)
@@ -172,7 +172,7 @@ class RangePlot(PlotView):
         else:
             self.bmin_curve.setData([], [])
         self.set_legend_text(self.bmin_curve,
-                             f"b<sub>min</sub> ({rich_numbers(plain(bm))} N·s/m)" + (", below" if below else ""))
+                             f"b<sub>min</sub> ({fmt(bm)} N·s/m)" + (", below" if below else ""))
         set_text(self.below_scale, f"↓ b_min = {plain(bm)} N·s/m lies below the axis" if below else "")
         self._off_scale_text(w, res, keep)
         self._place_notes()

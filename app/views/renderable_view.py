@@ -67,7 +67,7 @@ class SignedLogAxis(pg.AxisItem):
         return [(1.0, major)]
 
     def tickStrings(self, values: list[float], scale: float, spacing: float) -> list[str]:  # noqa: N802
-        return [format_number(float(np.round(damping_from_axis(v), 6)), 3) for v in values]
+        return [plain(float(np.round(damping_from_axis(v), 6)), 3) for v in values]
 
 
 def _log_k(k: np.ndarray) -> np.ndarray:
@@ -183,7 +183,7 @@ class RenderableSpaceView(PickablePlotView):
         self.bump()
 
     def _where(self) -> str:
-        return "K" if self.stiffness <= 0 else f"K = {format_number(self.stiffness)} N/m"
+        return "K" if self.stiffness <= 0 else f"K = {plain(self.stiffness, 6)} N/m"
 
     def _sync_legend(self, drawn: tuple[str, ...]) -> None:
         self._drawn = tuple(drawn)
@@ -269,11 +269,11 @@ class RenderableSpaceView(PickablePlotView):
         if k is None:
             return []
         sp = self.study.space
-        out = [Series(f"K_max at M = {plain(float(mv))} kg ({QUALITY_LABELS[self.quality]})", B_AXIS, K_AXIS,
+        out = [Series(f"K_max at M = {format_number(float(mv))} kg ({QUALITY_LABELS[self.quality]})", B_AXIS, K_AXIS,
                       np.asarray(sp.damping, float), np.asarray(k[i], float)) for i, mv in enumerate(sp.mass)]
         robust = self.robust_shown()
         if robust is not None:
-            out += [Series(f"robust K_max at M = {plain(float(mv))} kg ({QUALITY_LABELS[self.quality]}, "
+            out += [Series(f"robust K_max at M = {format_number(float(mv))} kg ({QUALITY_LABELS[self.quality]}, "
                            f"{self.robust_label})", B_AXIS, K_AXIS, np.asarray(sp.damping, float),
                            np.asarray(robust[i], float)) for i, mv in enumerate(sp.mass)]
         return out

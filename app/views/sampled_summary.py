@@ -15,7 +15,7 @@ from analysis.sampled import RIGID_GRASP, SimulationOptions, StabilityMap
 from analysis.sampled.terminations import PAPER_WALL_STIFFNESS
 from analysis.study import display_kind, map_point
 
-from app.views.base import fmt, rich_label
+from app.views.base import fmt, plain, rich_label
 
 __all__ = ["map_subtitle", "design_on_map", "exact_summary", "scenario_note", "LINEAR_LABEL", "CATCHING_UP"]
 
@@ -30,17 +30,17 @@ def map_subtitle(p: Profile, m: StabilityMap, d: int, impl: bool) -> str:
     """Who holds the handle, what it touches and which gains are fixed on the map."""
     names = {m.x_name, m.y_name}
     if display_kind(p).is_impedance:
-        env = "" if "kobj" in names else f"penalty wall k_obj = {PAPER_WALL_STIFFNESS / 1e3:g} kN/m"
+        env = "" if "kobj" in names else f"penalty wall k_obj = {plain(PAPER_WALL_STIFFNESS / 1e3, 6)} kN/m"
         who = "hands-off" if not names & {"grasp_mass", "grasp_stiffness"} else "grasp (other terms 0)"
-        fixed = f"k_c = {p.kc:g} N/m" if "kc" not in names else f"b_c = {p.bc:g} N·s/m"
+        fixed = f"k_c = {plain(p.kc, 6)} N/m" if "kc" not in names else f"b_c = {plain(p.bc, 6)} N·s/m"
         if names == {"kc", "bc"}:
             fixed = ""
     else:
         env = "free motion"
         g = RIGID_GRASP
-        who = f"rigid grasp ({g.mass:g} kg, {g.damping:g} N·s/m, {g.stiffness:g} N/m)"
-        fixed = f"b_c = {p.bc_adm:g} N·s/m, k_p = {p.kp:g}, k_d = {p.kd:g}" if "bc" not in names else \
-            f"k_p = {p.kp:g}, k_d = {p.kd:g}"
+        who = f"rigid grasp ({plain(g.mass, 6)} kg, {plain(g.damping, 6)} N·s/m, {plain(g.stiffness, 6)} N/m)"
+        gains = f"k_p = {plain(p.kp, 6)}, k_d = {plain(p.kd, 6)}"
+        fixed = f"b_c = {plain(p.bc_adm, 6)} N·s/m, {gains}" if "bc" not in names else gains
     return "; ".join(x for x in (who, env, fixed, _delay_text(d, impl)) if x)
 
 
@@ -75,7 +75,7 @@ def _impedance_summary(p: Profile, limit: float | None, bound: float | None, del
             text += (f"  <span style='color:{_BAD}'>⚠ The two-port bound is not safe here: the exact limit is "
                      f"{100 * (1 - limit / bound):.0f} % lower (the bound assumes no delay).</span>")
         elif bound is not None and limit > bound:
-            text += f"  The bound is conservative by a factor {limit / bound:.2g}."
+            text += f"  The bound is conservative by a factor {plain(limit / bound, 2)}."
     return text
 
 
@@ -120,10 +120,10 @@ def scenario_note(sec: SimulationSection, fresh: bool, display: str | None = Non
     ideal = dataclasses.replace(o, delay_samples=0, implementation_delay=False) == SimulationOptions()
     effects = "ideal sensors and actuator" if ideal else "with quantization / friction / saturation"
     grasp = "hands-off" if sc.grasp.hands_off else (
-        f"grasp {sc.grasp.mass:g} kg, {sc.grasp.damping:g} N·s/m, {sc.grasp.stiffness:g} N/m"
-        f"{f' until {sc.release_time:g} s' if math.isfinite(sc.release_time) else ''}")
+        f"grasp {plain(sc.grasp.mass, 6)} kg, {plain(sc.grasp.damping, 6)} N·s/m, {plain(sc.grasp.stiffness, 6)} N/m"
+        f"{f' until {plain(sc.release_time, 6)} s' if math.isfinite(sc.release_time) else ''}")
     env = ("no wall" if not sc.wall else
-           f"penalty wall {sc.wall_stiffness:g} N/m" if display_kind(sc.causality).is_impedance else "god-object wall")
+           f"penalty wall {plain(sc.wall_stiffness, 6)} N/m" if display_kind(sc.causality).is_impedance else "god-object wall")
     linear = ("hands-off against a rigid wall, so a damped grasp can be stable beyond it"
               if display is None or display_kind(display).is_impedance else
               "a rigid grasp in free motion and the linear loop")

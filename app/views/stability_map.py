@@ -20,6 +20,7 @@ from PySide6.QtWidgets import QWidget
 from analysis.sampled import StabilityMap
 
 from analysis.study.labels import PARAMETER_LABELS
+from analysis.study import format_number
 from app.views.base import Axis, PlotView, Series, plain
 from app.views.marker import design_marker, marker_xy, move_marker, set_marker_brush
 
@@ -208,6 +209,6 @@ class StabilityMapView(PlotView):
             return []
         xn, xu = PARAMETER_LABELS.get(m.x_name, (m.x_name, ""))
         yn, yu = PARAMETER_LABELS.get(m.y_name, (m.y_name, ""))
-        return [Series(f"ρ at {yn} = {plain(float(yv))} {yu}", Axis(xn, xu), Axis("ρ", ""),
+        return [Series(f"ρ at {yn} = {format_number(float(yv))} {yu}", Axis(xn, xu), Axis("ρ", ""),
                        np.asarray(m.x, float), np.asarray(m.spectral_radius[j], float))
                 for j, yv in enumerate(m.y)]

@@ -226,7 +226,7 @@ class StabilityPlot(PlotView):
             return
         self.worst_line.setPos(math.log10(wf))
         wm = float(np.interp(math.log10(wf), np.log10(w), np.where(np.isfinite(res.margin), res.margin, 0.0)))
-        reserve = f"reserve {100 * rel:.3g} %" if math.isfinite(rel) else f"margin {plain(wm, 3)} {unit}"
+        reserve = f"reserve {plain(100 * rel, 3)} %" if math.isfinite(rel) else f"margin {plain(wm, 3)} {unit}"
         text = f"binds at {plain(wf)} rad/s\n{reserve}"
         if text != self.worst_line.label.format:
             self.worst_line.label.setFormat(text)

@@ -10,7 +10,7 @@ import numpy as np
 from analysis.transparency.settings import WallSettings
 
 from analysis.study.labels import HOLD_LABELS
-from analysis.study.quantities import J_UNIT
+from analysis.study.quantities import J_UNIT, rich_numbers
 from analysis.study.wall import WallPoint, WallTradeoff
 from app.views.base import fmt
 
@@ -34,7 +34,7 @@ def wall_summary(st: WallSettings, point: WallPoint, trade: WallTradeoff | None,
     verdict = (f"<span style='color:{bad}'><b>closed loop unstable</b></span>" if unstable else
                f"<span style='color:{good}'><b>robustly stable</b></span> (≤ 0 dB)" if pk.robust else
                f"<span style='color:{bad}'><b>NOT robustly stable</b></span> (eq. 17 needs ≤ 0 dB)")
-    lines.append(f"‖L‖<sub>∞</sub> = {pk.gain_db:+.2f} dB at {where}: {verdict}")
+    lines.append(f"‖L‖<sub>∞</sub> = {rich_numbers(f'{pk.gain_db:+.2f}')} dB at {where}: {verdict}")
     if not pk.certified:
         lines.append("<i>peak not certified above the grid (zoh ripple)</i>")
     if trade is None:
@@ -43,7 +43,7 @@ def wall_summary(st: WallSettings, point: WallPoint, trade: WallTradeoff | None,
         o = trade.optimum
         on = " (on the constraint ‖L‖<sub>∞</sub> = 1)" if o.constrained else ""
         lines.append(f"<b>Robust optimum:</b> B<sub>c</sub> = {fmt(o.bc)} N·s/m, J = {fmt(o.index)} {J_UNIT}, "
-                     f"‖L‖<sub>∞</sub> = {20 * math.log10(o.peak):+.2f} dB{on}")
+                     f"‖L‖<sub>∞</sub> = {rich_numbers(f'{20 * math.log10(o.peak):+.2f}')} dB{on}")
     else:
         lines.append(f"<b>Robust optimum:</b> <span style='color:{bad}'>none in "
                      f"[{fmt(st.bc_min)}, {fmt(st.bc_max)}] N·s/m: {trade.optimum.reason}</span>")

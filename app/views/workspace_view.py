@@ -169,7 +169,7 @@ class WorkspaceMapView(PickablePlotView):
         m = self.map
         if m is None:
             return []
-        return [Series(f"k_worst at y = {plain(float(yv))} m", X_AXIS, K_AXIS, np.asarray(m.x, float),
+        return [Series(f"k_worst at y = {format_number(float(yv))} m", X_AXIS, K_AXIS, np.asarray(m.x, float),
                        np.asarray(m.worst_stiffness[j], float)) for j, yv in enumerate(m.y)]
 
     def export_notes(self) -> list[str]:

@@ -19,6 +19,7 @@ from PySide6.QtCore import Qt, Signal, Slot
 from PySide6.QtWidgets import QGridLayout, QLabel, QSizePolicy, QSlider, QWidget
 
 from analysis.chain import LIMITS
+from analysis.study import format_number
 
 from app.core.model import ProfileModel
 from app.widgets.sci_spin_box import SciSpinBox
@@ -35,7 +36,8 @@ def with_range(tooltip: str, field: str) -> str:
     if limit is None:
         return tooltip
     unit = f" {limit.unit}" if limit.unit else ""
-    return f"{tooltip}\nTyped values: {limit.lo:g} to {limit.hi:g}{unit} (the slider shows part of this range)"
+    return (f"{tooltip}\nTyped values: {format_number(limit.lo, style='text')} to "
+            f"{format_number(limit.hi, style='text')}{unit} (the slider shows part of this range)")
 
 Reader = Callable[[ProfileModel], float]
 Writer = Callable[[float, "int | None"], "str | None"]

@@ -18,6 +18,7 @@ import pytest
 from PySide6.QtCore import QCoreApplication, QEvent, QObject
 
 from analysis.study import observer_coupling, observer_response, observer_step, wall_design, wall_tradeoff
+from analysis.study.quantities import rich_numbers
 from app.tabs.observer_tab import ObserverTab
 from app.tabs.transparency_tab import TransparencyTab, admittance_grid
 
@@ -95,7 +96,8 @@ def test_wall_stiffness_drag_holds_the_curves_and_the_step(eom_win, qtbot):
             if ir.finite:
                 assert tab.index_plot.data("current")[1][0] == pytest.approx(ir.index, rel=1e-12)
             # the numbers in the summary follow at a reading pace (app.widgets.text_pacer): within 0.1 s
-            qtbot.waitUntil(lambda: f"{peak.gain_db:+.2f} dB" in tab.summary.text(), timeout=2000)  # noqa: B023
+            shown = rich_numbers(f"{peak.gain_db:+.2f}") + " dB"  # a negative peak with the minus sign "−"
+            qtbot.waitUntil(lambda: shown in tab.summary.text(), timeout=2000)  # noqa: B023
             yt = design.admittances(admittance_grid(design.settings), tab.bc)[1]
             np.testing.assert_allclose(tab.admittance_plot.data("yt")[1], np.abs(yt), rtol=1e-12)
             # the expensive parts wait, and say so

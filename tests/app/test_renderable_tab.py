@@ -57,7 +57,7 @@ def test_the_m_width_shown_is_m_widths(rwin, qtbot):
     assert (study.width.m_min, study.width.m_max) == (w.m_min, w.m_max)
     assert w.m_min < 0 < w.m_max
     text = tab.summary.text()
-    assert f"{format_number(w.m_min)} to {format_number(w.m_max)} kg" in text
+    assert f"{format_number(w.m_min, style='text')} to {format_number(w.m_max, style='text')} kg" in text
     rows = dict((q, (a, b)) for q, a, b in tab.width_view.rows)
     assert rows["all"] == (w.m_min, w.m_max) and rows["stable"] == w.by_quality["stable"]
     np.testing.assert_array_equal(study.space.k_max, renderable_study(req).space.k_max)
