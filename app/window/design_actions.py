@@ -17,13 +17,18 @@ from PySide6.QtCore import QObject, Slot
 from PySide6.QtGui import QAction
 from PySide6.QtWidgets import QMenu
 
-from analysis.study import BeyondLimit, display_kind, edits_beyond_limits
+from analysis.study import BeyondLimit, display_kind, edits_beyond_limits, format_number
 
 from app.core.commands import Editor
 from app.core.compute_graph import ComputeGraph
 from app.core.model import ProfileModel
 
-__all__ = ["DesignActions", "design_edits", "refusal_tip"]
+__all__ = ["DesignActions", "design_edits", "refusal_tip", "status_number"]
+
+
+def status_number(value: float, digits: int) -> str:
+    """A number in a status message: the GUI's text form (true minus, ×10 exponents)."""
+    return format_number(value, digits, style="text")
 
 
 def design_edits(name: str, design: Any) -> dict[str, float] | None:
@@ -121,7 +126,7 @@ class DesignActions(QObject):
             return
         d = self.graph.get("max_stiffness", hold=False)  # the current design, even during a drag
         if d.kc is None:
-            self._say(f"No k_c ≥ 0 satisfies eq. (9) with b_c = {d.bc:g} N·s/m", 8000)
+            self._say(f"No k_c ≥ 0 satisfies eq. (9) with b_c = {status_number(d.bc, 6)} N·s/m", 8000)
             return
         if d.kc == float("inf"):
             self._say("Every k_c satisfies eq. (9) for this device: k_c is unlimited", 8000)
@@ -129,7 +134,7 @@ class DesignActions(QObject):
         if self._refuse("max_stiffness", "Maximize k_c"):
             return
         self.editor.edit_many({"kc": d.kc}, "Maximize k_c")
-        self._say(f"k_c = {d.kc:.6g} N/m (binding at {d.frequency:.4g} rad/s)", 8000)
+        self._say(f"k_c = {status_number(d.kc, 6)} N/m (binding at {status_number(d.frequency, 4)} rad/s)", 8000)
 
     @Slot()
     def minimize_mc(self) -> None:
@@ -146,7 +151,7 @@ class DesignActions(QObject):
             return
         d = self.graph.result("min_mass")
         self.editor.edit_many({"mc": d.mc, "bc_adm": d.bc}, "Minimize m_c")
-        self._say(f"m_c = {d.mc:.6g} kg, b_c = {d.bc:.6g} N·s/m", 8000)
+        self._say(f"m_c = {status_number(d.mc, 6)} kg, b_c = {status_number(d.bc, 6)} N·s/m", 8000)
 
     @Slot(str)
     def _on_ready(self, name: str) -> None:

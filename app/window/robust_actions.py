@@ -28,9 +28,10 @@ from app.core.commands import Editor
 from app.core.compute_graph import ComputeGraph
 from app.core.model import ProfileModel
 from app.core.nodes_identify import ROBUST_NODE
-from app.window.design_actions import refusal_tip, show_tips
+from app.window.design_actions import refusal_tip, show_tips, status_number
 
 __all__ = ["RobustActions", "robust_changes", "robust_beyond"]
+
 
 
 def robust_changes(designs: RobustDesigns) -> tuple[dict[str, float], str] | None:
@@ -39,12 +40,12 @@ def robust_changes(designs: RobustDesigns) -> tuple[dict[str, float], str] | Non
         kc = designs.stiffness.kc if designs.stiffness else None
         if kc is None or not math.isfinite(kc):
             return None
-        return {"kc": kc}, f"k_c = {kc:.6g} N/m holds for the whole box (nominal {designs.stiffness.nominal_kc:.6g})"
+        return {"kc": kc}, f"k_c = {status_number(kc, 6)} N/m holds for the whole box (nominal {status_number(designs.stiffness.nominal_kc, 6)})"
     d = designs.damping
     if d is None or d.low is None:
         return None
     bc = math.sqrt(d.low * d.high) if math.isfinite(d.high) else 2.0 * d.low
-    return {"bc_adm": bc}, f"b_c = {bc:.6g} N·s/m, inside the robust interval [{d.low:.6g}, {d.high:.6g}]"
+    return {"bc_adm": bc}, f"b_c = {status_number(bc, 6)} N·s/m, inside the robust interval [{status_number(d.low, 6)}, {status_number(d.high, 6)}]"
 
 
 def robust_beyond(designs: RobustDesigns | None) -> BeyondLimit | None:

@@ -96,3 +96,22 @@ def test_a_profile_with_negative_numbers_keeps_them_ascii_in_analyze(tmp_path, c
     r = run_cli(capsys, "analyze", path)
     assert r.returncode == 0 and "−" not in r.stdout and "×10" not in r.stdout
     assert re.search(r"stability reserve -\d", r.stdout)  # the admittance block's negative reserve
+
+
+def test_status_messages_typeset_their_numbers():
+    """The design and robust-design status messages print numbers in the GUI's text form."""
+    from analysis.study import RobustDesigns
+    from app.window.design_actions import status_number
+    from app.window.robust_actions import robust_changes
+
+    assert status_number(-1.25e-5, 6) == "−1.25×10⁻⁵" == format_number(-1.25e-5, 6, style="text")
+    from analysis.identify.robust import RobustDamping
+    from tests.hbfd_fixtures import make_hbfd
+
+    dev = make_hbfd()
+    damping = RobustDamping(mc=0.5, low=2.5e-3, high=4.0e7, low_device=dev, high_device=dev, low_binding={},
+                            high_binding={}, nominal=(2.5e-3, 4.0e7), evaluations=2)
+    designs = RobustDesigns(impedance=False, intervals={}, stiffness=None, damping=damping, coupling=0.5,
+                            holds=True)
+    edits, message = robust_changes(designs)
+    assert message.endswith("[0.0025, 4×10⁷]") and "e+" not in message and "e-" not in message
