@@ -9,7 +9,9 @@ frequencies (the impedance display as in ``bench_core``: Y, bound, margin, Z_min
 admittance display with a PD loop) in fresh interpreters, alternately with and without the
 tuning, and reports the median over the processes of each process's median, the ratio untuned /
 tuned and the minor page faults per evaluation (the cost the tuning avoided: about 170 per
-impedance evaluation before the workspace).  The allocator is never switched inside a process:
+impedance evaluation before the workspace).  ``quick`` (the crash check) starts one fresh
+interpreter, the default allocator's, and measures the tuned state in ``zwidth bench``'s own
+process (as ``bench_core``'s quick run does).  The allocator is never switched inside a process:
 that would measure the heap the process inherited, not the setting.
 """
 
@@ -84,6 +86,14 @@ def measure_in_fresh_process(tuned: bool, repeat: int = 300, quick: bool = False
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
+def _measure_tuned_here(quick: bool) -> dict[str, dict[str, float]]:
+    """:func:`measure` in this process with the tuned allocator (``zwidth bench``'s own setting)."""
+    from app.allocator import tune_allocator
+
+    tune_allocator(True)
+    return measure(1, quick)
+
+
 def run(quick: bool = False) -> list[dict]:
     if not sys.platform.startswith("linux"):  # tune_allocator acts on glibc only: nothing to compare
         return [{"name": "default vs tuned allocator: not Linux, not measured"}]
@@ -91,7 +101,9 @@ def run(quick: bool = False) -> list[dict]:
     runs: dict[tuple[str, bool], list[dict[str, float]]] = {(d, t): [] for d in DISPLAYS for t in (False, True)}
     for i in range(rounds):
         for tuned in ((False, True) if i % 2 == 0 else (True, False)):  # alternate which state goes first
-            res = measure_in_fresh_process(tuned, repeat, quick)
+            # quick (a crash check): the tuned state in this process, as bench_core's quick run, one
+            # interpreter fewer to start
+            res = _measure_tuned_here(quick) if quick and tuned else measure_in_fresh_process(tuned, repeat, quick)
             for d in DISPLAYS:
                 runs[(d, tuned)].append(res[d])
     rows: list[dict] = []
