@@ -30,14 +30,25 @@ ALL = (*ASYNC_NODES, "design_chart")
 
 
 @pytest.fixture
-def window(win):
-    """The shared main window (tests/app/conftest.py) on the HBFD profile.
+def full_window(win):
+    """The shared main window (tests/app/conftest.py) on the HBFD profile, with the tab's default
+    grids (the map's 48 points per axis, the exact chart's 24 b_c points).
 
     These tests leave edits on the undo stack; pytest-qt closes the window before the shared
     fixture marks the stack clean, so the "unsaved changes" question is answered here.
     """
     win.maybe_save = lambda: True
     return win
+
+
+@pytest.fixture
+def window(coarse_grids, full_window):
+    """:func:`full_window` with the map and the exact chart on the coarse grids
+    (tests/app/conftest.py ``coarse_grids``, set before the window registers its nodes): for the
+    tests that are not about the grids' resolution (they compare with the analysis on the grid the
+    node holds, count calls, edit, cancel or take a screenshot); the default grids are checked by
+    :func:`test_map_equals_stability_map`."""
+    return full_window
 
 
 def show_tab(window, qtbot, names=ALL, timeout=60000) -> SampledTab:
@@ -56,6 +67,7 @@ def set_section(window, **options) -> None:
 
 
 def test_hidden_tab_computes_nothing_until_shown(window, qtbot):
+    """Counts the node calls (coarse grids: not about their resolution)."""
     g = window.graph
     assert window.tabs.currentWidget() is not window.tab(SampledTab)
     window.editor.edit("kc", 60e3)
@@ -76,7 +88,9 @@ def test_hidden_tab_computes_nothing_until_shown(window, qtbot):
     assert tab.refreshes >= 2
 
 
-def test_map_equals_stability_map(window, qtbot):
+def test_map_equals_stability_map(full_window, qtbot):
+    """The default map (48 x 48, on the default window's grid), then a re-ranged one, equal the analysis."""
+    window = full_window
     tab = show_tab(window, qtbot)
     p = window.model.profile
     n = 48
@@ -104,6 +118,7 @@ def test_map_equals_stability_map(window, qtbot):
 
 
 def test_exact_limit_equals_critical_stiffness_chart(window, qtbot):
+    """The chart equals the analysis on the b_c grid the node holds (coarse: not about its resolution)."""
     set_section(window, delay_samples=1)
     tab = show_tab(window, qtbot)
     p = window.model.profile
@@ -127,6 +142,7 @@ def test_exact_limit_equals_critical_stiffness_chart(window, qtbot):
 
 
 def test_simulation_plots_and_verdict(window, qtbot):
+    """The simulation traces and verdict (the map and chart on coarse grids: not checked here)."""
     tab = show_tab(window, qtbot)
     p = window.model.profile
     sec = p.simulation
@@ -156,6 +172,7 @@ def test_simulation_plots_and_verdict(window, qtbot):
 
 
 def test_edits_go_through_undo(window, qtbot):
+    """The panel's edits and undo (coarse grids: not about their resolution)."""
     tab = show_tab(window, qtbot)
     panel = tab.panel
     before = window.model.profile.simulation
@@ -186,6 +203,7 @@ def test_edits_go_through_undo(window, qtbot):
 
 
 def test_cancel_keeps_last_result_and_can_rerun(window, qtbot):
+    """Cancel and rerun of the exact chart (coarse grids: not about their resolution)."""
     tab = show_tab(window, qtbot)
     g = window.graph
     old_chart = tab.exact_view.chart
@@ -223,6 +241,7 @@ def test_cancel_keeps_last_result_and_can_rerun(window, qtbot):
 
 
 def test_screenshot(window, qtbot, screenshot):
+    """Every plot shows data (coarse grids: the default grids are drawn by the map test)."""
     set_section(window, delay_samples=1)
     tab = show_tab(window, qtbot)
     qtbot.wait(50)
