@@ -274,16 +274,3 @@ def test_a_failing_report_leaves_no_temporary_and_keeps_the_old_file(app, tmp_pa
     assert sorted(p.name for p in tmp_path.iterdir()) == ["old.html", "old.pdf"]
     assert {p.read_bytes() for p in tmp_path.iterdir()} == {b"old report"}
 
-
-def test_report_content_imports_without_qt():
-    """The report's content comes from analysis.study alone: importing it loads no Qt."""
-    import subprocess
-    import sys
-
-    code = ("import sys, app.report.content, app.report.model\n"
-            "bad = sorted(m for m in sys.modules if m.split('.')[0] in ('PySide6', 'shiboken6', 'pyqtgraph')\n"
-            "             or m.startswith('app.views'))\n"
-            "print(bad)\n")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
-                         cwd=Path(__file__).resolve().parents[1])
-    assert out.stdout.strip() == "[]"
