@@ -124,10 +124,21 @@ def test_sweep_removes_only_stale_temporaries_of_ours(tmp_path):
     assert sweep_temporaries(tmp_path / "missing") == []
 
 
+# The children import atomic_write's own module (analysis/profiles/files.py) without running the
+# packages' __init__ (which import scipy and the whole numerical core: ~0.8 CPU-s a child, ~0.2 this way):
+# the function killed mid-write is the same code, the process is what these tests are about.
+_LEAF_IMPORT = f"""
+import os, sys, types
+for _name in ("analysis", "analysis.profiles"):
+    _pkg = types.ModuleType(_name)
+    _pkg.__path__ = [os.path.join({str(ROOT)!r}, *_name.split("."))]
+    sys.modules[_name] = _pkg
+from analysis.profiles.files import atomic_write
+"""
+
 # a child that saves in a loop, each save different and large enough to be caught half-written
-_SAVER = """
+_SAVER = _LEAF_IMPORT + """
 import sys
-from analysis.profiles import atomic_write
 target, n = sys.argv[1], 0
 while True:
     n += 1
@@ -171,9 +182,9 @@ def test_a_killed_save_is_swept_even_when_it_is_caught_mid_write(tmp_path):
     target.write_text("old")
     marker = tmp_path / "started"
     code = (
-        "import os, sys, time\n"
+        _LEAF_IMPORT
+        + "import os, sys, time\n"
         "from pathlib import Path\n"
-        "from analysis.profiles import atomic_write\n"
         "def write(path):\n"
         "    Path(path).write_text('half')\n"
         f"    Path({str(marker)!r} + '.w').write_text(path)\n"
