@@ -208,7 +208,9 @@ def test_a_drag_on_the_stability_tab_lays_nothing_out(window, qtbot):
         assert requests.total() <= 2, requests.counts
 
 
-def test_a_drag_on_the_sampled_tab_lays_nothing_out_and_holds_the_bound(window, qtbot):
+def test_a_drag_on_the_sampled_tab_lays_nothing_out_and_holds_the_bound(coarse_grids, window, qtbot):
+    """The map and exact chart on the coarse grids (``coarse_grids``): the test counts layouts and
+    calls during a drag, not the grids' resolution."""
     g = window.graph
     tab = window.tab(SampledTab)
     window.tabs.setCurrentWidget(tab)

@@ -34,8 +34,10 @@ def fitted(folder: Path) -> IdentifyResult:
 
 
 @pytest.fixture
-def window(win):
-    """The shared main window on the HBFD profile; these tests leave edits behind."""
+def window(coarse_grids, win):
+    """The shared main window on the HBFD profile; these tests leave edits behind.  The Sampled-data
+    tab's map and exact chart on the coarse grids (``coarse_grids``): the tests check that the tab
+    runs on the identified chain, not the grids' resolution."""
     win.maybe_save = lambda: True
     return win
 
