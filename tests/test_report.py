@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Mapping
 from html.parser import HTMLParser
-from pathlib import Path
+from io import BytesIO
 
 import pypdf
 import PySide6  # noqa: F401 - the reports need Qt: fail loudly, never skip
@@ -15,6 +16,7 @@ from analysis import AdmittanceDisplay, ImpedanceDisplay  # noqa: E402
 from analysis.profiles.io import bundled_profiles, load_profile  # noqa: E402
 from analysis.study import QUANTITIES, display_kind  # noqa: E402
 from analysis.study.summary import summarize  # noqa: E402
+from report_builds import BuiltReport, bundled_reports, flat
 
 PROFILES = sorted(bundled_profiles().items())
 IDS = [name for name, _ in PROFILES]
@@ -28,29 +30,13 @@ def app():
 
 
 @pytest.fixture(scope="module")
-def built(app, tmp_path_factory):
-    """{name: (content, pdf path, pages, html path)} for every bundled profile."""
-    from app.report import build_report
-    from app.report.content import gather
-
-    out = {}
-    tmp = tmp_path_factory.mktemp("reports")
-    for name, path in PROFILES:
-        profile = load_profile(path)
-        pdf, page = tmp / f"{name}.pdf", tmp / f"{name}.html"
-        info = build_report(profile, pdf, source=str(path))
-        assert build_report(profile, page, source=str(path))["format"] == "html"
-        out[name] = (gather(profile, source=str(path)), pdf, info, page)
-    return out
+def built(app, tmp_path_factory) -> Mapping[str, BuiltReport]:
+    """{name: BuiltReport} for every bundled profile (built once per process: test_report_faults
+    reads the same reports, :mod:`report_builds`)."""
+    return bundled_reports(str(tmp_path_factory.getbasetemp()))
 
 
-def _pdf_text(path: Path) -> tuple[int, str]:
-    reader = pypdf.PdfReader(str(path))
-    return len(reader.pages), "\n".join(p.extract_text() for p in reader.pages)
-
-
-def _flat(text: str) -> str:
-    return re.sub(r"\s+", " ", text)
+_flat = flat
 
 
 def _canon(text: str) -> str:
@@ -71,9 +57,8 @@ def _expected_pages(profile) -> int:
 
 @pytest.mark.parametrize("name", IDS)
 def test_pdf_pages_and_text(built, name):
-    content, pdf, info, _ = built[name]
+    content, _pdf, info, _html, pages, text = built[name]
     profile = content.profile
-    pages, text = _pdf_text(pdf)
     assert pages == info["pages"] == _expected_pages(profile)
     flat = _flat(text)
     assert "Haptic interface design report" in flat
@@ -151,8 +136,7 @@ class _Collect(HTMLParser):
 
 @pytest.mark.parametrize("name", IDS)
 def test_html_self_contained(built, name):
-    content, _pdf, info, page = built[name]
-    text = page.read_text(encoding="utf-8")
+    content, _pdf, info, text, _pages, _text = built[name]
     parser = _Collect()
     parser.feed(text)
     parser.close()
@@ -196,35 +180,17 @@ def test_figures_are_the_app_views(built, app):
 
 
 def test_pdf_plots_are_vector(built):
-    _content, pdf, _info, _ = built["rigid"]
-    reader = pypdf.PdfReader(str(pdf))
+    reader = pypdf.PdfReader(BytesIO(built["rigid"].pdf))
     figure_page = reader.pages[2]
     assert not figure_page.images  # curves, axes and text as vector paths and text
     assert "rad/s" in figure_page.extract_text()
-
-
-def test_export_report_action(app, tmp_path, monkeypatch):
-    from app.window.main_window import MainWindow
-
-    win = MainWindow()
-    try:
-        assert win.act_export_report.text().startswith("Export")
-        out = tmp_path / "from-app.html"
-        from app.report.action import export_report
-
-        assert export_report(win, str(out))
-        assert out.read_text(encoding="utf-8").count("<svg") >= 3
-    finally:
-        win.close()
-        win.deleteLater()
 
 
 def test_report_typesets_numbers_and_names(built):
     """Issue 13: one way of writing numbers and names. The page shows powers of ten, not
     ``4.8e-08``; scenarios and swept parameters by their names, not their JSON keys; and the
     reserve figure says the verdict's reserve."""
-    content, _pdf, _info, page = built["hbfd"]
-    text = page.read_text(encoding="utf-8")
+    content, text = built["hbfd"].content, built["hbfd"].html
     body = re.sub(r"<svg.*?</svg>", " ", text, flags=re.S)
     assert not re.search(r"\d\.?\d*e[+-]\d\d", re.sub(r"<[^>]+>", " ", body)), "raw e-notation on the page"
     assert "Impedance worst case" in body and "impedance_worst_case" not in body

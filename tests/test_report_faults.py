@@ -11,8 +11,9 @@ import pypdf
 import PySide6  # noqa: F401 - the reports need Qt: fail loudly, never skip
 import pytest
 
-from analysis.profiles.io import bundled_profiles, load_profile
+from analysis.profiles.io import bundled_profiles
 from analysis.study import HOLD_LABELS, QUANTITIES
+from report_builds import bundled_reports, flat
 
 NAMES = ("eom", "hbfd")
 
@@ -26,21 +27,10 @@ def app():
 
 @pytest.fixture(scope="module")
 def reports(app, tmp_path_factory):
-    """{name: (content, pdf text, html text)} for the Eom profile (wall, observer) and HBFD (simulation)."""
-    from app.report import build_report
-    from app.report.content import gather
-
-    tmp = tmp_path_factory.mktemp("faults")
-    out = {}
-    for name in NAMES:
-        path = bundled_profiles()[name]
-        profile = load_profile(path)
-        pdf, page = tmp / f"{name}.pdf", tmp / f"{name}.html"
-        build_report(profile, pdf, source=str(path))
-        build_report(profile, page, source=str(path))
-        text = re.sub(r"\s+", " ", "\n".join(p.extract_text() for p in pypdf.PdfReader(str(pdf)).pages))
-        out[name] = (gather(profile, source=str(path)), text, page.read_text(encoding="utf-8"))
-    return out
+    """{name: (content, pdf text, html text)} for the Eom profile (wall, observer) and HBFD (simulation):
+    the reports test_report reads too, built once per process (:mod:`report_builds`)."""
+    built = bundled_reports(str(tmp_path_factory.getbasetemp()), NAMES)
+    return {name: (built[name].content, flat(built[name].pdf_text), built[name].html) for name in NAMES}
 
 
 class _Cells(HTMLParser):
@@ -179,15 +169,20 @@ def test_figures_leave_room_for_their_labels(app, reports):
 
 
 def test_report_made_in_the_app_names_its_file(app, tmp_path):
-    """6. File → Export Report names the document's file: a bundled preset's and an opened file's."""
+    """6. File → Export Report names the document's file: a bundled preset's and an opened file's.
+    (The action's export of the preset is test_report's former test_export_report_action: its
+    menu text and figures are checked here, on the same export.)"""
     from app.report.action import export_report
     from app.window.main_window import MainWindow
 
     win = MainWindow()
     try:
+        assert win.act_export_report.text().startswith("Export")
         out = tmp_path / "preset.html"
         assert export_report(win, str(out))
-        assert re.search(r"<td><b>File</b></td><td>hbfd\.json</td>", out.read_text(encoding="utf-8"))
+        page = out.read_text(encoding="utf-8")
+        assert re.search(r"<td><b>File</b></td><td>hbfd\.json</td>", page)
+        assert page.count("<svg") >= 3
         mine = tmp_path / "my-device.json"
         shutil.copy(bundled_profiles()["rigid"], mine)
         assert win.documents.open_path(str(mine), ask=False)

@@ -1,0 +1,78 @@
+"""The reports of the bundled profiles, built once per test process for the modules that read them.
+
+``test_report`` and ``test_report_faults`` check the same reports (every bundled profile, PDF and
+HTML, the default page size and the profile file as the source): a report costs seconds, so they
+share one build (issue 21). The result is immutable: the frozen content, the build info, and the
+files' bytes and text (a test that wants a file writes its own copy).
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import Any, NamedTuple
+from unittest import mock
+
+import pypdf
+
+from analysis.profiles.io import bundled_profiles, load_profile
+
+
+class BuiltReport(NamedTuple):
+    """One bundled profile's report, as :func:`app.report.build_report` wrote it."""
+
+    content: Any  #: the ReportContent the PDF was built from (frozen)
+    pdf: bytes
+    info: Mapping[str, Any]  #: build_report's info of the PDF
+    html: str
+    pdf_pages: int
+    pdf_text: str  #: the text of every page, joined by newlines
+
+
+def _build(name: str, path: str, folder: str) -> BuiltReport:
+    import io
+    import tempfile
+
+    import app.report.content as content_module
+    from app.report import build_report
+
+    profile = load_profile(path)
+    seen: list[Any] = []
+    gather = content_module.gather
+
+    def recorded(*args: Any, **kwargs: Any) -> Any:  # the content the report is made of, not a third gather
+        seen.append(gather(*args, **kwargs))
+        return seen[-1]
+
+    with tempfile.TemporaryDirectory(dir=folder) as tmp:
+        pdf, page = f"{tmp}/{name}.pdf", f"{tmp}/{name}.html"
+        with mock.patch.object(content_module, "gather", recorded):
+            info = build_report(profile, pdf, source=str(path))
+        assert len(seen) == 1, "build_report no longer gathers through app.report.content.gather"
+        html_info = build_report(profile, page, source=str(path))
+        assert html_info["format"] == "html"
+        with open(pdf, "rb") as f:
+            data = f.read()
+        with open(page, encoding="utf-8") as f:
+            html = f.read()
+    reader = pypdf.PdfReader(io.BytesIO(data))
+    text = "\n".join(p.extract_text() for p in reader.pages)
+    return BuiltReport(seen[0], data, MappingProxyType(dict(info)), html, len(reader.pages), text)
+
+
+@functools.lru_cache(maxsize=None)
+def bundled_report(folder: str, name: str) -> BuiltReport:
+    """The report of the bundled profile ``name``, written under ``folder`` (a session's temporary
+    folder) and removed again. Needs a ``QApplication`` (:func:`app.report.figures.ensure_app`)."""
+    return _build(name, str(bundled_profiles()[name]), folder)
+
+
+def bundled_reports(folder: str, names: tuple[str, ...] | None = None) -> Mapping[str, BuiltReport]:
+    """{name: BuiltReport} for the bundled profiles ``names`` (all of them by default)."""
+    return MappingProxyType({name: bundled_report(folder, name) for name in names or sorted(bundled_profiles())})
+
+
+def flat(text: str) -> str:
+    return re.sub(r"\s+", " ", text)
