@@ -23,6 +23,7 @@ from analysis.multidof import (
     discrete_plant,
     first_crossings,
     five_bar_device,
+    moving_radius,
     wall_pencil,
     wall_radii,
     wall_shape,
@@ -137,6 +138,24 @@ def test_batched_crossings_equal_the_scalar_ones(delay: int, vf: VelocityFilter 
     assert np.all(is_stable(wall_radii(dev, ks[:-1, None, None] * walls, 5.0 * walls, delay, velocity_filter=vf)))
     assert not np.any(is_stable(wall_radii(dev, ks[:-1, None, None] * (1 + 1e-9) * walls, 5.0 * walls, delay,
                                            velocity_filter=vf)))
+
+
+def test_the_moving_radius_is_stable_where_the_spectral_radius_is_and_not_flat() -> None:
+    """Brent's crossing follows moving_radius: the same stability as the spectral radius at every
+    k of a plane wall's scan (rigid-body modes of the free directions left out), and not the flat
+    1 of the spectral radius on the stable side, so Brent needs few evaluations."""
+    dev = RigidCartesianDevice(mass=np.diag([0.2, 0.5, 0.35]), damping=np.diag([0.5, 1.0, 3.0]), sample_time=T)
+    u = np.array([0.3, 0.5, 0.81]) / np.linalg.norm([0.3, 0.5, 0.81])
+    P0, P1 = wall_pencil(dev, np.outer(u, u)[None], 5.0, 1)
+    k = critical_wall_stiffness(dev, 5.0, 1, normal=u)
+    ks = np.r_[np.geomspace(1.0, 1e9, 400), k, k * (1 + CROSSING_RTOL), np.geomspace(0.999, 1.001, 41) * k]
+    Phi = P0 + ks[:, None, None] * P1
+    rho, moving = spectral_radius(Phi), moving_radius(Phi)
+    assert np.array_equal(is_stable(rho), is_stable(moving))
+    assert is_stable(moving[400]) and not is_stable(moving[401])  # k is the stable end of the bracket
+    below = ks < k
+    assert np.all(np.abs(rho[below] - 1.0) <= 1e-13)  # flat: the free directions' rigid-body modes
+    assert np.all(moving[below] < 1.0) and np.ptp(moving[below]) > 1e-3
 
 
 def test_worst_normal_of_a_diagonal_device_is_its_weakest_axis_limit() -> None:

@@ -56,6 +56,7 @@ from analysis.multidof.limits import (
     check_directions,
     critical_wall_stiffness,
     first_crossings,
+    moving_radius,
     narrow_brackets,
     worst_normal,
 )
@@ -136,6 +137,7 @@ __all__ = [
     "loop_parts",
     "lth_ratio",
     "lth_stiffness_bound",
+    "moving_radius",
     "narrow_brackets",
     "normal_device",
     "plant_matrices",
