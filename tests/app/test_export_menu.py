@@ -34,7 +34,7 @@ def test_plain_title():
     assert plain_title("a &lt; b  <b>c</b>") == "a < b c"
 
 
-def test_file_export_is_grouped_by_tab_with_readable_unique_names(win):
+def check_file_export_is_grouped_by_tab_with_readable_unique_names(win) -> None:
     tree = export_tree(win.export_menu)
     tabs = [t for t in win.analysis_tabs if t.plot_views()]
     assert list(tree) == [t.title for t in tabs]  # one submenu per tab, in tab order
@@ -71,7 +71,7 @@ class _Event:
         self.acceptedItem = item
 
 
-def test_right_click_menu_has_only_our_export(win):
+def check_right_click_menu_has_only_our_export(win) -> None:
     for view in win.plot_views():
         vb = view.plot.getViewBox()
         menu = vb.getMenu(_Event(vb))
@@ -110,7 +110,8 @@ def test_export_from_a_tab_never_opened_computes_first(win, tmp_path):
     assert column(header, rows, "current gains: k_c [N/m]").tolist() == [p.kc]
 
 
-def test_exact_limit_chart_export_from_a_tab_never_opened(win, tmp_path):
+def test_exact_limit_chart_export_from_a_tab_never_opened(coarse_grids, win, tmp_path):
+    """The export computes the chart first (on the coarse grids: not about the chart's resolution)."""
     view = win.tab(SampledTab).exact_view
     path = tmp_path / "exact.csv"
     assert win.export_view(view, "csv", str(path))
@@ -159,7 +160,7 @@ def test_file_stem_is_plain_ascii():
     assert file_stem("Con") == "con_"  # a name Windows reserves gets a suffix
 
 
-def test_default_export_names_are_valid_everywhere_and_unique(win, tmp_path, monkeypatch):
+def check_default_export_names_are_valid_everywhere_and_unique(win, monkeypatch) -> None:
     import re
 
     from PySide6.QtWidgets import QFileDialog
@@ -186,6 +187,15 @@ def test_default_export_names_are_valid_everywhere_and_unique(win, tmp_path, mon
     assert not win.export_view(view, "csv")
     assert asked and os.path.basename(asked[0]) == default_export_name(view, "csv", win)
     assert "|" not in asked[0] and "<" not in asked[0]
+
+
+def test_every_plot_is_in_the_export_menus_under_a_valid_unique_name(win, monkeypatch):
+    """The File > Export tree, every plot's right-click menu and every plot's default file name:
+    one test, because each check goes over every tab's plot views and building every tab is most
+    of its cost (about 1.2 s of CPU); the checks leave the window as they found it."""
+    check_file_export_is_grouped_by_tab_with_readable_unique_names(win)
+    check_right_click_menu_has_only_our_export(win)
+    check_default_export_names_are_valid_everywhere_and_unique(win, monkeypatch)
 
 
 @pytest.mark.parametrize("opened", [False, True])
