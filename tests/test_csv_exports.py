@@ -13,7 +13,6 @@ depend on the grid's size, and a full workspace map or Z-width region costs seco
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from pathlib import Path
 
@@ -21,12 +20,13 @@ import numpy as np
 import pytest
 
 from analysis.identify import device_response
-from analysis.profiles import ControllerSection, MultiDofSection, RenderableSection, load_profile, save_profile
+from analysis.profiles import load_profile, save_profile
 from analysis.profiles.identification import IdentificationSection, MeasurementData
 from app.cli import DEFAULT_SECTION_PLOTS, MULTIDOF_PLOTS, PLOT_SECTIONS, PLOTS, RENDERABLE_PLOTS
 from app.views.base import Axis
 from app.views.export import HEADER_PATTERN, TABLE_HEADER_PATTERN, table_csv_text
 from cli_runner import Capture, run_cli
+from coarse_grids import coarse
 from csv_form import check_csv, check_table, column, read_csv
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -41,23 +41,6 @@ def applicable(preset: str) -> list[str]:
 
 
 CASES = [(preset, plot) for preset in PRESETS for plot in applicable(preset)]
-#: the coarse grids (section, the section's own default, its grid fields): a handful of points each
-COARSE = {"multidof": (MultiDofSection, {"x_points": 5, "y_points": 4}),
-          "renderable": (RenderableSection, {"mass_points": 4, "damping_points": 5}),
-          "controller": (ControllerSection, {"b_points": 12})}
-
-
-def coarse(profile: Path, section: str, tmp_path: Path, **fields: object) -> Path:
-    """``profile`` with a coarse grid in its ``section`` (the section's defaults where it has none),
-    saved in ``tmp_path``; ``fields`` set more of the section."""
-    cls, grid = COARSE[section]
-    p = load_profile(profile)
-    sec = dataclasses.replace(getattr(p, section) or cls(), **grid, **fields)
-    path = tmp_path / f"coarse-{section}-{profile.name}"
-    save_profile(p.replace(**{section: sec}), path)
-    return path
-
-
 def export_profile(preset: str, plot: str, tmp_path: Path) -> Path:
     """The bundled profile ``preset``, on a coarse grid where ``plot`` computes one."""
     path = PROFILES / f"{preset}.json"

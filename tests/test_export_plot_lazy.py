@@ -15,10 +15,20 @@ from pathlib import Path
 import PySide6  # noqa: F401 - the figures need Qt: fail loudly, never skip
 import pytest
 
+from analysis.profiles import Profile
 from analysis.profiles.io import bundled_profiles, load_profile
 from analysis.transparency.design import WallDesign
+from coarse_grids import coarse_sections
 
 ALL_SECTIONS = Path(__file__).parent / "data" / "saved_profiles" / "all_sections.json"
+
+
+def _all_sections() -> Profile:
+    """The profile with every section, its renderable space, workspace map and Z-width region on
+    coarse grids: which study a figure calls does not depend on the grids' sizes (the full grids
+    cost about 10 s here, issue 21)."""
+    return coarse_sections(load_profile(ALL_SECTIONS), "renderable", "multidof", "controller")
+
 
 def _sentinels() -> dict[str, tuple[tuple[object, str], ...]]:
     """Each part of the report -> the study functions (owner, name) that compute it, where its section
@@ -116,12 +126,12 @@ def _parts_of(key: str) -> frozenset[str]:
                                  "observer_coupling", "identify", "zwidth_region", "filter_optimum",
                                  "renderable_space", "workspace_polar"])
 def test_a_figure_gathers_only_its_parts(key, app, calls):
-    """On a profile with every section, gathering one figure's parts calls only their study functions,
-    and the figure is drawn from them."""
+    """On a profile with every section (coarse grids: :func:`_all_sections`), gathering one figure's
+    parts calls only their study functions, and the figure is drawn from them."""
     from app.report.content import gather
     from app.report.figures import make_view
 
-    profile = load_profile(ALL_SECTIONS)
+    profile = _all_sections()
     content = gather(profile, parts=_parts_of(key))
     assert set(calls) == set(_parts_of(key)), calls
     fig = make_view(content, key)
@@ -130,10 +140,11 @@ def test_a_figure_gathers_only_its_parts(key, app, calls):
 
 
 def test_the_region_alone_has_the_reports_region(calls):
-    """The region computed alone is the report's (same area), without the optimum."""
+    """The region computed alone is the report's (same area), without the optimum (coarse grids,
+    :func:`_all_sections`)."""
     from app.report.content import gather
 
-    profile = load_profile(ALL_SECTIONS)
+    profile = _all_sections()
     alone = gather(profile, parts={"zwidth_region"})
     assert "zwidth_optimum" not in alone.results and not any("Z-width region" in s.title for s in alone.sections)
     assert calls == Counter({"zwidth_region": 1})
