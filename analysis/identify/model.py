@@ -139,16 +139,18 @@ def state_space(params: ChainParameters, quantity: str, boundary: str,
     A = np.zeros((P, N, N))
     inv_m = 1.0 / params.masses
     k, b, g = params.stiffnesses, params.dampings, params.ground_dampings
-    for i in range(nd):
-        A[:, i, nd + i] = 1.0
-        A[:, i, nd + i + 1] = -1.0
-    for i in range(n):
-        A[:, nd + i, nd + i] -= g[:, i] * inv_m[:, i]
-        for e, sign in ((i, -1.0), (i - 1, 1.0)):  # element i pulls back, element i-1 pushes
-            if 0 <= e < nd:
-                A[:, nd + i, e] += sign * k[:, e] * inv_m[:, i]
-                A[:, nd + i, nd + e] += sign * b[:, e] * inv_m[:, i]
-                A[:, nd + i, nd + e + 1] -= sign * b[:, e] * inv_m[:, i]
+    e = np.arange(nd)  # element e joins mass e (pulled back) and mass e + 1 (pushed)
+    A[:, e, nd + e] = 1.0
+    A[:, e, nd + e + 1] = -1.0
+    A[:, nd + e, e] = -k * inv_m[:, :nd]
+    A[:, nd + e + 1, e] = k * inv_m[:, 1:]
+    diag = g.copy()  # the damping matrix: g_i + b_{i-1} + b_i on its diagonal, -b_e off it
+    diag[:, :nd] += b
+    diag[:, 1:] += b
+    v = np.arange(n)
+    A[:, nd + v, nd + v] = -diag * inv_m
+    A[:, nd + e, nd + e + 1] = b * inv_m[:, :nd]
+    A[:, nd + e + 1, nd + e] = b * inv_m[:, 1:]
     B = np.zeros((P, N))
     B[:, N - 1] = inv_m[:, n - 1]
     Cd = np.zeros((P, N))
@@ -205,11 +207,14 @@ def _phi(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     small = np.abs(x) < 0.1
     xs = np.where(small, 1.0, x)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        em1 = np.exp(xs) - 1.0
+        em1 = np.expm1(xs)
         p1 = em1 / xs
         p2 = (em1 - xs) / (xs * xs)
-    s1 = 1 + x / 2 + x ** 2 / 6 + x ** 3 / 24 + x ** 4 / 120 + x ** 5 / 720 + x ** 6 / 5040
-    s2 = 0.5 + x / 6 + x ** 2 / 24 + x ** 3 / 120 + x ** 4 / 720 + x ** 5 / 5040 + x ** 6 / 40320
+    if not np.any(small):
+        return p1, p2
+    # Horner forms of the series to x^6: 1 + x/2 + x^2/6 + ... and 1/2 + x/6 + x^2/24 + ...
+    s1 = 1 + x * (1 / 2 + x * (1 / 6 + x * (1 / 24 + x * (1 / 120 + x * (1 / 720 + x / 5040)))))
+    s2 = 1 / 2 + x * (1 / 6 + x * (1 / 24 + x * (1 / 120 + x * (1 / 720 + x * (1 / 5040 + x / 40320)))))
     return np.where(small, s1, p1), np.where(small, s2, p2)
 
 
@@ -265,15 +270,16 @@ def sampled_response(params: ChainParameters, w: np.ndarray, sample_time: float,
     lam, V = np.linalg.eig(A)
     beta = np.linalg.solve(V, B[..., None].astype(complex))[..., 0]
     cd = np.einsum("pn,pnm->pm", Cd, V)
-    ci = np.einsum("pn,pnm->pm", Ci, V)
     p1, p2 = _phi(lam * T)
     e = np.exp(lam * T)
     z = np.exp(1j * np.asarray(w, dtype=float) * T)
     inv = 1.0 / (z[None, :, None] - e[:, None, :])  # (P, F, N)
-    h = np.einsum("pfn,pn->pf", inv, cd * T * p1 * beta)
-    if np.any(Ci):
-        ib = ci * T * T * beta
-        h += (np.einsum("pfn,pn->pf", inv, ib * p1 * p1) + np.sum(ib * p2, axis=1)[:, None]) / (z[None, :] - 1.0)
+    if not Ci.any():
+        h = (inv @ (cd * T * p1 * beta)[:, :, None])[:, :, 0]
+    else:
+        ib = np.einsum("pn,pnm->pm", Ci, V) * T * T * beta
+        both = inv @ np.stack([cd * T * p1 * beta, ib * p1 * p1], axis=2)  # (P, F, 2): one product
+        h = both[:, :, 0] + (both[:, :, 1] + np.sum(ib * p2, axis=1)[:, None]) / (z[None, :] - 1.0)
     if delay_samples:
         h = h * z[None, :] ** (-int(delay_samples))
     return h

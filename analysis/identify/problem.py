@@ -22,6 +22,7 @@ of ``p + 1`` chains rather than ``p + 1`` Python-level ones.  :meth:`FitProblem.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy import optimize
@@ -85,6 +86,12 @@ class FitProblem:
             A new problem; this one is unchanged.
         """
         return FitProblem(self.measurements, tuple(keys), base, self.sensor_element, self.cancelled)
+
+    @cached_property
+    def _targets(self) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+        """Per measurement, ``sqrt(W_f)`` and ``1 / H_measured`` (rows of shape (1, F_m)): read once,
+        not at each of the thousands of model evaluations of a fit."""
+        return tuple((np.sqrt(m.weights())[None, :], 1.0 / m.response[None, :]) for m in self.measurements)
 
     @property
     def n_residuals(self) -> int:
@@ -155,9 +162,8 @@ class FitProblem:
                 hs = self.responses(thetas)
             except np.linalg.LinAlgError:
                 return np.full((thetas.shape[0], self.n_residuals), _PENALTY)
-            for m, h in zip(self.measurements, hs):
-                ratio = h / m.response[None, :]
-                sw = np.sqrt(m.weights())[None, :]
+            for (sw, inverse), h in zip(self._targets, hs):
+                ratio = h * inverse
                 parts.append(sw * np.log(np.abs(ratio)))
                 parts.append(sw * np.angle(ratio))
         out = np.concatenate(parts, axis=1)
@@ -184,7 +190,7 @@ class FitProblem:
         """
         return self.residual_rows(np.asarray(theta, float)[None, :])[0]
 
-    def jacobian(self, theta: np.ndarray, central: bool = False) -> np.ndarray:
+    def jacobian(self, theta: np.ndarray, central: bool = False, at: np.ndarray | None = None) -> np.ndarray:
         """Finite-difference Jacobian (R, p) in log-parameters, all perturbations in one batch.
 
         Parameters
@@ -194,6 +200,9 @@ class FitProblem:
         central : bool, optional
             ``True``: central differences with step ``1e-5`` (second-order, used for the
             covariance); ``False``: forward differences with step ``1e-7`` (the solver's).
+        at : numpy.ndarray or None, optional
+            The residual at ``theta`` when already evaluated (forward differences only): then only
+            the ``p`` perturbed chains are evaluated.
 
         Returns
         -------
@@ -213,9 +222,31 @@ class FitProblem:
             r = self.residual_rows(rows)
             return ((r[:p] - r[p:]) / (2 * h)).T
         h = _FD_STEP
+        if at is not None:
+            return ((self.residual_rows(theta + h * np.eye(p)) - at) / h).T
         rows = np.concatenate([theta[None, :], theta + h * np.eye(p)])
         r = self.residual_rows(rows)
         return ((r[1:] - r[0]) / h).T
+
+
+class _Memo:
+    """The residual and forward Jacobian of one solver run, remembering the last residual: the
+    solver asks for the Jacobian at the point whose residual it has just evaluated, so that chain
+    is not evaluated twice (p of the p + 1 chains per Jacobian)."""
+
+    def __init__(self, problem: FitProblem) -> None:
+        self.problem = problem
+        self.x: np.ndarray | None = None
+        self.r: np.ndarray | None = None
+
+    def residual(self, theta: np.ndarray) -> np.ndarray:
+        r = self.problem.residual(theta)
+        self.x, self.r = np.array(theta, float), r
+        return r
+
+    def jacobian(self, theta: np.ndarray) -> np.ndarray:
+        same = self.x is not None and np.array_equal(self.x, theta)
+        return self.problem.jacobian(theta, at=self.r if same else None)
 
 
 def solve(problem: FitProblem, theta0: np.ndarray, max_nfev: int, tol: float = 1e-15) -> optimize.OptimizeResult:
@@ -223,16 +254,17 @@ def solve(problem: FitProblem, theta0: np.ndarray, max_nfev: int, tol: float = 1
     range of a parameter (:func:`analysis.identify.params.physical_range`, enforced by
     :class:`~analysis.Device`), the bounded trust-region method from the clipped point instead."""
     lo, hi = log_bounds(problem)
-    kw = dict(jac=problem.jacobian, x_scale="jac", xtol=tol, ftol=tol, gtol=tol, max_nfev=max_nfev)
+    memo = _Memo(problem)
+    kw = dict(jac=memo.jacobian, x_scale="jac", xtol=tol, ftol=tol, gtol=tol, max_nfev=max_nfev)
     inside = np.all((theta0 > lo) & (theta0 < hi))
     if inside:
-        r = optimize.least_squares(problem.residual, theta0, method="lm", **kw)
+        r = optimize.least_squares(memo.residual, theta0, method="lm", **kw)
         if np.all((r.x >= lo) & (r.x <= hi)):
             return r
         theta0 = r.x
     pad = 1e-9 * (hi - lo)
     start = np.clip(theta0, lo + pad, hi - pad)
-    return optimize.least_squares(problem.residual, start, method="trf", bounds=(lo, hi), **kw)
+    return optimize.least_squares(memo.residual, start, method="trf", bounds=(lo, hi), **kw)
 
 
 def log_bounds(problem: FitProblem) -> tuple[np.ndarray, np.ndarray]:
