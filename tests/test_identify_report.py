@@ -107,5 +107,7 @@ def test_a_profile_with_unbounded_intervals_reports_why_there_is_no_robust_desig
     assert ident.after[0].startswith("<b>What the fit said</b>")
     assert ident.after[1] == "&bull;&nbsp;the handle mode is not detected in these measurements: " \
                              "&lt;the device is the merged chain&gt;"
-    assert main(["report", str(path), "-o", str(tmp_path / "open.pdf")]) == 0
+    # the PDF is written (without the sampled-data checks: they read neither the identification nor
+    # its intervals, and their map and scenario cost seconds, issue 21)
+    assert main(["report", str(path), "-o", str(tmp_path / "open.pdf"), "--no-sampled"]) == 0
 
