@@ -70,19 +70,22 @@ def u_limits(B, w, T, mc):
     With t = u + a, a = T/(2 m_c), g = a cot(wT/2): Re Z_cA = t/(t^2+g^2) >= B, i.e.
     B t^2 - t + B g^2 <= 0 for B > 0 (every t >= a works where B <= 0).
     """
-    a = 0.5 * T / mc
-    g = a / np.tan(0.5 * w * T)
     L = np.full(w.shape, -np.inf)
     U = np.full(w.shape, np.inf)
     pos = B > 0
-    d = 1.0 - 4.0 * B[pos] ** 2 * g[pos] ** 2
+    L[pos], U[pos] = _u_limits_pos(B[pos], np.tan(0.5 * w[pos] * T), 0.5 * T / mc)
+    return L, U
+
+
+def _u_limits_pos(Bp, tan_half, a):
+    """:func:`u_limits` where B > 0 (``Bp``), with ``tan(wT/2)`` there and ``a = T/(2 m_c)``."""
+    g2 = (a / tan_half) ** 2
+    d = 1.0 - 4.0 * Bp ** 2 * g2
     ok = d >= 0
     sq = np.sqrt(np.where(ok, d, 0.0))
-    tlo = 2.0 * B[pos] * g[pos] ** 2 / (1.0 + sq)  # = (1 - sq)/(2B), stable
-    thi = (1.0 + sq) / (2.0 * B[pos])
-    L[pos] = np.where(ok, tlo - a, np.inf)
-    U[pos] = np.where(ok, thi - a, -np.inf)
-    return L, U
+    tlo = 2.0 * Bp * g2 / (1.0 + sq)  # = (1 - sq)/(2B), stable
+    thi = (1.0 + sq) / (2.0 * Bp)
+    return np.where(ok, tlo - a, np.inf), np.where(ok, thi - a, -np.inf)
 
 
 def dense_interval(adm, mc: float, points: int = 400_000):
@@ -99,9 +102,13 @@ def dense_interval(adm, mc: float, points: int = 400_000):
 def dense_min_mass(adm, w, B, rtol: float = 1e-12):
     """Smallest m_c with a non-empty interval on the sampled (w, B): bisection in log m_c."""
     T = adm.device.sample_time
+    pos = B > 0  # u_limits' algebra on the points with B > 0 (elsewhere L = -inf, U = inf),
+    Bp, tan_half = B[pos], np.tan(0.5 * w[pos] * T)  # their mass-independent parts computed once
 
     def feasible(mc):
-        L, U = u_limits(B, w, T, mc)
+        if Bp.size == 0:
+            return True
+        L, U = _u_limits_pos(Bp, tan_half, 0.5 * T / mc)
         return max(float(L.max()), 0.0) < float(U.min())
 
     lo, hi = 1e-6, 1.0
