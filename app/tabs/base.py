@@ -22,7 +22,16 @@ from typing import ClassVar
 import pyqtgraph as pg
 from PySide6.QtCore import QEvent, QObject, QSize, Qt, QTimer, Signal
 from PySide6.QtGui import QResizeEvent, QShowEvent
-from PySide6.QtWidgets import QAbstractScrollArea, QFrame, QLabel, QScrollArea, QSizePolicy, QVBoxLayout, QWidget
+from PySide6.QtWidgets import (
+    QAbstractScrollArea,
+    QFrame,
+    QLabel,
+    QScrollArea,
+    QSizePolicy,
+    QSplitter,
+    QVBoxLayout,
+    QWidget,
+)
 
 from app.core.commands import Editor
 from app.core.compute_graph import ComputeGraph
@@ -30,7 +39,8 @@ from app.core.model import ProfileModel
 from app.core.settings import Settings
 from app.views.base import PlotView
 
-__all__ = ["AppContext", "AnalysisTab", "scroll_body", "PLOT_MIN_HEIGHT", "DataAreaFloor"]
+__all__ = ["AppContext", "AnalysisTab", "scroll_body", "PLOT_MIN_HEIGHT", "DataAreaFloor", "SettingsScroll",
+           "settings_beside_plots"]
 
 #: The least height of a plot's data area (its ViewBox) on any tab: below it a tab scrolls instead.
 PLOT_MIN_HEIGHT = 120
@@ -213,6 +223,53 @@ def scroll_body(tab: QWidget) -> QWidget:
     outer.setContentsMargins(0, 0, 0, 0)
     outer.addWidget(area)
     return body
+
+
+class SettingsScroll(QScrollArea):
+    """A tab's settings beside its plots: they scroll vertically, never horizontally, and the area
+    is at least as wide as their minimum width plus the vertical scroll bar, so that no field or
+    sentence is cut at its right edge (a fixed maximum width used to cut them at 1280×720)."""
+
+    def __init__(self, settings: QWidget, minimum: int, maximum: int) -> None:
+        super().__init__()
+        self._limits = (minimum, maximum)
+        self.setWidget(settings)
+        self.setWidgetResizable(True)
+        self.setFrameShape(QFrame.Shape.NoFrame)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        settings.installEventFilter(self)
+        self.fit_width()
+
+    def fit_width(self) -> None:
+        """The width limits from the settings' current minimum width."""
+        need = self.widget().minimumSizeHint().width() + self.verticalScrollBar().sizeHint().width() + 2
+        low, high = max(self._limits[0], need), max(self._limits[1], need)
+        if (self.minimumWidth(), self.maximumWidth()) != (low, high):
+            self.setMinimumWidth(low)
+            self.setMaximumWidth(high)
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt API
+        if watched is self.widget() and event.type() == QEvent.Type.LayoutRequest:
+            QTimer.singleShot(0, self, self.fit_width)
+        return super().eventFilter(watched, event)
+
+
+def settings_beside_plots(tab: QWidget, settings: QWidget, plots: QWidget, width: tuple[int, int],
+                          note: QWidget) -> SettingsScroll:
+    """Lay out a tab: its ``settings`` (a :class:`SettingsScroll` of ``width`` = (minimum, maximum)
+    px) on the left of its ``plots``, in a splitter, and ``note`` (the citation) below, on the tab's
+    :func:`scroll_body`.  Returns the settings' scroll area."""
+    scroll = SettingsScroll(settings, *width)
+    split = QSplitter(Qt.Orientation.Horizontal)
+    split.addWidget(scroll)
+    split.addWidget(plots)
+    split.setStretchFactor(1, 1)
+    split.setChildrenCollapsible(False)
+    body = QVBoxLayout(scroll_body(tab))
+    body.setContentsMargins(4, 2, 4, 4)
+    body.addWidget(split, 1)
+    body.addWidget(note)
+    return scroll
 
 
 @dataclass(frozen=True)

@@ -24,9 +24,7 @@ from PySide6.QtCore import Qt, Slot
 from PySide6.QtWidgets import (
     QComboBox,
     QFormLayout,
-    QFrame,
     QLabel,
-    QScrollArea,
     QSpinBox,
     QSplitter,
     QVBoxLayout,
@@ -50,7 +48,7 @@ from app.core.compute_graph import ComputeGraph
 from app.core.nodes_renderable import RENDERABLE_NODE, ROBUST_NODE, ROBUST_PARAMS
 from app.panels.renderable_panel import RenderablePanel
 from app.tabs.async_jobs import AsyncJobs
-from app.tabs.base import AnalysisTab, scroll_body
+from app.tabs.base import AnalysisTab, settings_beside_plots
 from app.views.base import PlotView
 from app.views.renderable_view import MWidthView, RenderableSpaceView
 from app.widgets.citation_note import CitationNote
@@ -114,13 +112,6 @@ class RenderableTab(AsyncJobs, AnalysisTab):
         lay.addLayout(form)
         lay.addWidget(self.summary)
         lay.addWidget(self.panel, 1)
-        scroll = QScrollArea()  # the settings scroll on their own: the plots keep the tab's height
-        scroll.setWidget(left)
-        scroll.setWidgetResizable(True)
-        scroll.setFrameShape(QFrame.Shape.NoFrame)
-        scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
-        scroll.setMinimumWidth(270)
-        scroll.setMaximumWidth(360)
         right = QSplitter(Qt.Orientation.Vertical)
         top = QWidget()
         tl = QVBoxLayout(top)
@@ -132,15 +123,8 @@ class RenderableTab(AsyncJobs, AnalysisTab):
         right.addWidget(self.width_view)
         right.setSizes([70, 30])
         right.setChildrenCollapsible(False)
-        split = QSplitter(Qt.Orientation.Horizontal)
-        split.addWidget(scroll)
-        split.addWidget(right)
-        split.setStretchFactor(1, 1)
-        split.setChildrenCollapsible(False)
-        body = QVBoxLayout(scroll_body(self))
-        body.setContentsMargins(4, 2, 4, 4)
-        body.addWidget(split, 1)
-        body.addWidget(CitationNote(COLONNESE_CHAN, COLONNESE_OKAMURA))
+        # the settings scroll on their own: the plots keep the tab's height
+        settings_beside_plots(self, left, right, (270, 360), CitationNote(COLONNESE_CHAN, COLONNESE_OKAMURA))
         ctx.graph.ready.connect(self._on_ready)
         ctx.graph.cancelled.connect(self.on_job_cancelled)
         ctx.graph.failed.connect(self.on_job_failed)

@@ -19,7 +19,7 @@ from collections.abc import Hashable
 from typing import Any
 
 from PySide6.QtCore import Qt, Slot
-from PySide6.QtWidgets import QFrame, QLabel, QScrollArea, QSplitter, QVBoxLayout, QWidget
+from PySide6.QtWidgets import QLabel, QSplitter, QVBoxLayout, QWidget
 
 from analysis.multidof import WorkspaceMap
 from analysis.study import WorkspacePoint, format_number, handle_edits, multidof_section
@@ -30,7 +30,7 @@ from app.core.compute_graph import ComputeGraph
 from app.core.nodes_workspace import WORKSPACE_MAP_NODE, WORKSPACE_POINT_NODE
 from app.panels.workspace_panel import WorkspacePanel
 from app.tabs.async_jobs import AsyncJobs
-from app.tabs.base import AnalysisTab, scroll_body
+from app.tabs.base import AnalysisTab, settings_beside_plots
 from app.widgets.citation_note import CitationNote
 from app.views.base import PlotView
 from app.views.workspace_view import WorkspaceMapView, WorkspacePolarView
@@ -98,13 +98,6 @@ class WorkspaceTab(AsyncJobs, AnalysisTab):
         lay.setContentsMargins(0, 0, 0, 0)
         lay.addWidget(self.summary)
         lay.addWidget(self.panel, 1)
-        scroll = QScrollArea()
-        scroll.setWidget(left)
-        scroll.setWidgetResizable(True)
-        scroll.setFrameShape(QFrame.Shape.NoFrame)
-        scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
-        scroll.setMinimumWidth(250)
-        scroll.setMaximumWidth(330)
         top = QWidget()
         tl = QVBoxLayout(top)
         tl.setContentsMargins(0, 0, 0, 0)
@@ -115,16 +108,8 @@ class WorkspaceTab(AsyncJobs, AnalysisTab):
         plots.addWidget(self.polar_view)
         plots.setSizes([62, 38])
         plots.setChildrenCollapsible(False)
-        split = QSplitter(Qt.Orientation.Horizontal)
-        split.addWidget(scroll)
-        split.addWidget(plots)
-        split.setStretchFactor(1, 1)
-        split.setChildrenCollapsible(False)
-        body = QVBoxLayout(scroll_body(self))
-        body.setContentsMargins(4, 2, 4, 4)
-        body.addWidget(split, 1)
         # the exact sampled loop of the 1-DOF analysis, taken to every wall direction (issue 25)
-        body.addWidget(CitationNote(ADAMS, COLGATE_BROWN))
+        settings_beside_plots(self, left, plots, (250, 330), CitationNote(ADAMS, COLGATE_BROWN))
         ctx.graph.ready.connect(self._on_ready)
         ctx.graph.cancelled.connect(self.on_job_cancelled)
         ctx.graph.failed.connect(self.on_job_failed)
