@@ -26,7 +26,7 @@ the ``python -m app.cli`` and console-script wiring and their exit codes
 (``test_cli.test_module_entry_point_exit_codes``), export going headless by itself with no display
 variables (``test_cli.test_export_plot_headless_process``), the GUI refusing to start without a
 display instead of Qt aborting the process (``test_no_display``), the commands that must not
-import Qt (``test_no_qt``, which starts its own interpreter), and Ctrl-C cancelling a fit
+import Qt (``test_no_qt``, through :mod:`import_probe`'s one interpreter), and Ctrl-C cancelling a fit
 (``test_identify_cli_mixed.test_ctrl_c_cancels_cleanly``: a signal needs a process of its own).
 """
 
