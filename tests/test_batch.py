@@ -27,6 +27,7 @@ from analysis.progress import OperationCancelled
 from analysis.sampled import (
     DeviceFailed,
     QualitySettings,
+    RobustSpace,
     box_corners,
     box_samples,
     intersect_devices,
@@ -78,9 +79,26 @@ def test_box_samples_refuse_bad_counts(n, seed, field: str) -> None:
 
 
 # -- the map and the intersection ----------------------------------------------------------------
-def test_intersection_is_the_elementwise_minimum_and_its_device(devices: list[Device]) -> None:
-    each = np.stack([region_k(d) for d in devices])  # the independent route: one by one, here
+@pytest.fixture(scope="module")
+def each(devices: list[Device]) -> np.ndarray:
+    """Every device's region_k, one by one in this process (the independent route), read-only."""
+    out = np.stack([region_k(d) for d in devices])
+    out.flags.writeable = False
+    return out
+
+
+@pytest.fixture(scope="module")
+def local(devices: list[Device]) -> RobustSpace:
+    """The batch's intersection in this process (workers=1), which the pool and cluster results
+    must equal; a frozen result of read-only arrays, shared by the tests that compare with it."""
     r = intersect_devices(region_k, devices, workers=1)
+    r.k_max.flags.writeable = r.binding.flags.writeable = False
+    return r
+
+
+def test_intersection_is_the_elementwise_minimum_and_its_device(devices: list[Device], each: np.ndarray,
+                                                                local: RobustSpace) -> None:
+    r = local
     assert r.devices == len(devices)
     assert np.array_equal(r.k_max, each.min(axis=0))
     assert np.array_equal(r.binding, each.argmin(axis=0))  # argmin: the first of equal values
@@ -90,15 +108,16 @@ def test_intersection_is_the_elementwise_minimum_and_its_device(devices: list[De
     assert len(set(r.binding.tolist())) >= 1 and masses[r.binding].min() <= np.median(masses)
 
 
-def test_pool_of_one_and_two_workers_agree_bit_for_bit(devices: list[Device]) -> None:
-    one = intersect_devices(region_k, devices, workers=1)
+def test_pool_of_one_and_two_workers_agree_bit_for_bit(devices: list[Device], each: np.ndarray,
+                                                      local: RobustSpace) -> None:
+    one = local
     two = intersect_devices(region_k, devices, workers=2)
     odd = intersect_devices(region_k, devices, workers=2, chunk_size=5)
     for r in (two, odd):
         assert np.array_equal(r.k_max, one.k_max) and np.array_equal(r.binding, one.binding)
     mapped = map_devices(region_k, devices, workers=2, chunk_size=5)
     assert len(mapped) == len(devices)
-    assert all(np.array_equal(m, region_k(d)) for m, d in zip(mapped, devices))
+    assert all(np.array_equal(m, e) for m, e in zip(mapped, each))
 
 
 @pytest.mark.parametrize(("workers", "chunk"), [(1, None), (2, 1), (2, 4), (2, None)])
@@ -229,8 +248,8 @@ def client() -> Iterator[object]:
     cluster.close()
 
 
-def test_cluster_result_equals_the_local_result_bit_for_bit(client: object, devices: list[Device]) -> None:
-    local = intersect_devices(region_k, devices, workers=1)
+def test_cluster_result_equals_the_local_result_bit_for_bit(client: object, devices: list[Device],
+                                                            local: RobustSpace) -> None:
     remote = intersect_devices(region_k, devices, client=client, chunk_size=5)
     assert np.array_equal(remote.k_max, local.k_max) and np.array_equal(remote.binding, local.binding)
     batch = box_corners(box())
