@@ -18,6 +18,12 @@ titles, spin boxes, combo boxes, table cells and headers, list items, tab titles
 titles, axis text (tick numbers and titles), text items in plots, legend texts, legend samples and
 curves.  The theme is switched at run time (light -> dark -> light) and the display switched while
 dark: both used to leave dark text on dark grey.
+
+The sweep over every tab runs in the layout sweep's window at 1600×1000
+(``test_laptop_layout.py``'s ``test_every_tab_is_laid_out_whole``, on coarse grids): every tab dark
+(the stored theme: every tab is built dark), light, dark again after the display switch
+(admittance), then light on the current tab, each pass measuring more than 500 things; each tab is
+settled once for the layout checks and :func:`tab_contrast` together.
 """
 
 from __future__ import annotations
@@ -29,8 +35,6 @@ from PySide6.QtGui import QColor, QFont, QImage
 from PySide6.QtWidgets import (QAbstractButton, QAbstractItemView, QAbstractSpinBox, QCheckBox, QComboBox,
                                QGraphicsTextItem, QGroupBox, QHeaderView, QLabel, QPushButton, QRadioButton,
                                QScrollArea, QStyle, QStyleOptionButton, QTabBar, QWidget)
-
-from analysis.profiles.io import bundled_profiles, load_profile
 
 from app.tabs.sampled_tab import ASYNC_NODES, SampledTab
 from app.views.base import PlotView
@@ -365,60 +369,42 @@ def settle(window, qtbot) -> None:
     qtbot.wait(100)
 
 
+def tab_contrast(window, qtbot, where: str | None = None) -> tuple[list[str], int]:
+    """Every widget and plot of the current tab (settled), the verdict bar and the parameter panel:
+    the ones below AA (named by ``where``, default the tab's title), and how many were measured."""
+    window.grab()  # lays out and polishes whatever the last refresh changed, before any rectangle is read
+    qtbot.wait(50)
+    name = window.tabs.tabText(window.tabs.currentIndex()) if where is None else where
+    probe = Probe(window)
+    probe.widgets(window)
+    for view in window.tabs.currentWidget().findChildren(PlotView):
+        if view.isVisible():
+            probe.plot(view)
+    problems = []
+    for what, ratio, required in probe.results:
+        if ratio is not None and ratio < required:
+            problems.append(f"{name}: {what}: contrast {ratio:.2f} < {required}")
+        elif ratio is None and what.startswith(("label", "rich text", "tab title", "legend", "cell")):
+            problems.append(f"{name}: {what}: no text found")
+    return problems, len(probe.results)
+
+
 def low_contrast(window, qtbot, tabs: list[int] | None = None) -> tuple[list[str], int]:
     """Every widget and plot of every tab (or of the ``tabs`` given, by index), the verdict bar and the
-    parameter panel: the ones below AA, and how many were measured."""
+    parameter panel: the ones below AA, and how many were measured.
+
+    The sweep of every tab in both themes (dark as stored, light, dark again after the display
+    switch, then light on the current tab) runs :func:`tab_contrast` in the layout sweep's pass
+    over every tab at 1600×1000 (``test_laptop_layout.py``), which settles each tab once for all
+    its checks."""
     problems, measured = [], 0
     for i in range(window.tabs.count()) if tabs is None else tabs:
         window.tabs.setCurrentIndex(i)
         settle(window, qtbot)
-        window.grab()  # lays out and polishes whatever the last refresh changed, before any rectangle is read
-        qtbot.wait(50)
-        probe = Probe(window)
-        probe.widgets(window)
-        for view in window.tabs.currentWidget().findChildren(PlotView):
-            if view.isVisible():
-                probe.plot(view)
-        for what, ratio, required in probe.results:
-            measured += 1
-            if ratio is not None and ratio < required:
-                problems.append(f"{window.tabs.tabText(i)}: {what}: contrast {ratio:.2f} < {required}")
-            elif ratio is None and what.startswith(("label", "rich text", "tab title", "legend", "cell")):
-                problems.append(f"{window.tabs.tabText(i)}: {what}: no text found")
+        found, n = tab_contrast(window, qtbot)
+        problems += found
+        measured += n
     return problems, measured
-
-
-def test_contrast_of_every_widget_on_every_tab_in_both_themes(qtbot, settings, coarse_grids):
-    """One window through every tab three times: dark (the stored theme: every tab is built dark),
-    light, and dark again after the display switch (admittance: relabels the axes while dark); then
-    back to light on the current tab.  On coarse grids (conftest.coarse_profile): the colours do
-    not depend on the results' resolution, and every curve, map, legend and warning is still drawn."""
-    from conftest import coarse_profile
-
-    from app.window.main_window import MainWindow
-
-    settings.set_theme("dark")
-    w = MainWindow(settings=settings, profile=coarse_profile(load_profile(bundled_profiles()["hbfd"])))
-    try:
-        w.resize(1400, 900)
-        w.show()
-        qtbot.waitExposed(w)
-        problems, counts = [], []
-        for theme, display, tabs in (("dark", None, None), ("light", None, None), ("dark", "admittance", None),
-                                     ("light", None, "current")):
-            w.set_theme(theme)
-            if display:
-                w.editor.edit("display", display)
-            found, n = low_contrast(w, qtbot, [w.tabs.currentIndex()] if tabs else None)
-            problems += [f"{theme}{', ' + display if display else ''}: {p}" for p in found]
-            counts.append(n)
-        assert not problems, "\n".join(problems)
-        assert min(counts[:3]) > 500  # every tab's widgets were found and measured
-    finally:
-        w.undo_stack.setClean()
-        w.runner.shutdown()
-        w.close()
-        w.deleteLater()
 
 
 def test_rho_one_contour_shows_on_the_map_and_both_backgrounds():

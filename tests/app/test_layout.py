@@ -1,8 +1,9 @@
 """Layout at laptop sizes: every label, badge and combo box readable, no plot cut, no legend on the data.
 
-The window is resized to 1280×800, 1366×768 and 1600×1000 and every tab is shown in both displays
-(one window: the impedance display at every size, then the admittance display).
-The checks are geometric (what Qt laid out), not screenshots:
+The checks of :func:`layout_problems` run in the layout sweep over every tab
+(``test_laptop_layout.py``'s ``test_every_tab_is_laid_out_whole``) at 1280×800, 1366×768 and
+1600×1000, on every tab in the impedance display and then in the admittance display, with the
+verdict badge's text fitting it in both.  The checks are geometric (what Qt laid out), not screenshots:
 
 * a label's text fits its width (a word-wrapped label: its height for that width fits its height);
 * a combo box's edit field is as wide as its current text;
@@ -24,13 +25,10 @@ from PySide6.QtCore import QRectF, Qt
 from PySide6.QtGui import QTextDocument
 from PySide6.QtWidgets import QComboBox, QLabel, QStyle, QStyleOptionComboBox, QWidget
 
-from analysis.profiles.io import bundled_profiles, load_profile
-
-from app.tabs.sampled_tab import ASYNC_NODES, SampledTab
+from app.tabs.sampled_tab import SampledTab
 from app.views.base import PlotView
 from app.views.stability_map import StabilityMapView
 
-SIZES = ((1280, 800), (1366, 768), (1600, 1000))
 #: A legend inside the plot may cover at most this fraction of a curve's points (on screen).
 LEGEND_COVER = 0.05
 
@@ -166,56 +164,6 @@ def layout_problems(window: QWidget, tab: QWidget) -> list[str]:
         if view.isVisible():
             out.extend(f"{view.title}: {p}" for p in plot_problems(view))
     return out
-
-
-def settle(window, qtbot, tab) -> None:
-    g = window.graph
-    names = [n for n in tab.nodes if n in g]
-    if isinstance(tab, SampledTab):
-        names = [n for n in names if n in ASYNC_NODES]
-    else:
-        names = []  # the worker jobs the tab started (the wall's and observer's held curves, for example)
-        qtbot.waitUntil(lambda: not tab.stale, timeout=20000)  # the tab has asked for what it shows
-        qtbot.waitUntil(lambda: not g.runner.running(), timeout=120000)
-    if names:
-        qtbot.waitUntil(lambda: all(g.is_fresh(n) for n in names), timeout=120000)
-    qtbot.waitUntil(lambda: not tab.stale, timeout=20000)
-    qtbot.wait(150)  # deferred layout and legend placement
-
-
-def test_every_tab_is_readable_at_laptop_sizes(qtbot, settings, coarse_grids):
-    """One window, every tab at every size in the impedance display, then again in the admittance
-    display (the display-independent tabs' results are computed once), on coarse grids
-    (conftest.coarse_profile): the layout does not depend on the results' resolution."""
-    from conftest import coarse_profile
-
-    from app.window.main_window import MainWindow
-
-    w = MainWindow(settings=settings, profile=coarse_profile(load_profile(bundled_profiles()["hbfd"])))
-    try:
-        w.show()
-        qtbot.waitExposed(w)
-        problems = []
-        for display in ("impedance", "admittance"):
-            if w.model.profile.display != display:
-                w.editor.edit("display", display)
-            for width, height in SIZES:
-                w.resize(width, height)
-                for i in range(w.tabs.count()):
-                    w.tabs.setCurrentIndex(i)
-                    tab = w.tabs.currentWidget()
-                    settle(w, qtbot, tab)
-                    assert (w.width(), w.height()) == (width, height), "the window grew to fit its contents"
-                    problems += [f"{width}×{height} {display} {w.tabs.tabText(i)}: {p}"
-                                 for p in layout_problems(w, tab)]
-            badge = w.verdict.badge
-            assert badge.fontMetrics().horizontalAdvance(badge.text()) <= badge.contentsRect().width(), display
-        assert not problems, "\n".join(problems)
-    finally:
-        w.undo_stack.setClean()
-        w.runner.shutdown()
-        w.close()
-        w.deleteLater()
 
 
 def test_sampled_settings_panel_collapses(qtbot, win):
