@@ -58,13 +58,17 @@ def test_hidden_tab_computes_nothing(window, qtbot):
     assert all(window.graph.calls(n) == 1 for n in NODES)
 
 
-def test_default_plots_equal_analysis(window, qtbot):
+def test_default_plots_equal_analysis_and_screenshot(window, qtbot, screenshot):
+    """The default plots equal the analysis, and the screenshot of that state shows data in every plot
+    (one window for both: the same state)."""
     tab = show(window, qtbot)
     check_plots(tab, window.model.profile.observer)
     # the observer reduces the coupling below its cutoff
     w, with_ = tab.coupling_plot.data("with")
     without = tab.coupling_plot.data("without")[1]
     assert np.all(with_[w < 20] < 0.2 * without[w < 20])
+    qtbot.wait(50)
+    screenshot(window, "tab_observer", tab.plot_views())
 
 
 def test_widgets_drive_the_plots(window, qtbot):
@@ -102,9 +106,3 @@ def test_none_section_shows_defaults(window, qtbot):
     assert window.model.profile.observer == ObserverSettings(order=4)
     window.undo_stack.undo()
     assert window.model.profile.observer is None
-
-
-def test_screenshot(window, qtbot, screenshot):
-    tab = show(window, qtbot)
-    qtbot.wait(50)
-    screenshot(window, "tab_observer", tab.plot_views())

@@ -117,8 +117,10 @@ def test_map_equals_stability_map(full_window, qtbot):
     assert window.graph.params(MAP_NODE)["x_range"] == (2e4, 2e5)
 
 
-def test_exact_limit_equals_critical_stiffness_chart(window, qtbot):
-    """The chart equals the analysis on the b_c grid the node holds (coarse: not about its resolution)."""
+def test_exact_limit_equals_critical_stiffness_chart_and_screenshot(window, qtbot, screenshot):
+    """The chart equals the analysis on the b_c grid the node holds (coarse: not about its resolution);
+    then the screenshot of that state: every plot shows data (one window for both: the same edit and
+    the same computations)."""
     set_section(window, delay_samples=1)
     tab = show_tab(window, qtbot)
     p = window.model.profile
@@ -139,6 +141,10 @@ def test_exact_limit_equals_critical_stiffness_chart(window, qtbot):
     chart = window.graph.result("design_chart").chart
     okb = np.isfinite(chart.kc) & (chart.kc > 0)
     np.testing.assert_array_equal(tab.exact_view.bound.xData, chart.bc[okb])
+    # the screenshot (coarse grids: the default grids are drawn by the map test)
+    qtbot.wait(50)
+    screenshot(window, "tab_sampled", [tab.map_view, tab.exact_view, *tab.time_view.plot_views()])
+    assert tab.map_view.export_series() and tab.exact_view.export_series() and tab.time_view.energy.export_series()
 
 
 def test_simulation_plots_and_verdict(window, qtbot):
@@ -238,12 +244,3 @@ def test_cancel_keeps_last_result_and_can_rerun(window, qtbot):
     assert g.calls(EXACT_NODE) == calls + 1
     qtbot.wait(20)
     assert tab.exact_view.chart.delay_samples == 2
-
-
-def test_screenshot(window, qtbot, screenshot):
-    """Every plot shows data (coarse grids: the default grids are drawn by the map test)."""
-    set_section(window, delay_samples=1)
-    tab = show_tab(window, qtbot)
-    qtbot.wait(50)
-    screenshot(window, "tab_sampled", [tab.map_view, tab.exact_view, *tab.time_view.plot_views()])
-    assert tab.map_view.export_series() and tab.exact_view.export_series() and tab.time_view.energy.export_series()

@@ -119,7 +119,10 @@ def test_bc_slider_moves_markers_and_step(window, qtbot):
 
 
 @pytest.mark.parametrize("hold", ["discrete", "zoh", "none"])
-def test_hold_model_choice(window, qtbot, hold):
+def test_hold_model_choice(window, qtbot, screenshot, hold):
+    """Each hold model recomputes the plots (the analysis' values) and undoes in one step; with the
+    discrete one, the finding and the screenshot of that state (every plot shows data: it was a test of
+    its own, on the same window and the same edit)."""
     tab = show(window, qtbot)
     tab.fields["hold"].set_value(hold)
     assert window.model.profile.wall.hold == hold
@@ -131,6 +134,7 @@ def test_hold_model_choice(window, qtbot, hold):
         assert tab.peak_plot.data("current")[1][0] == pytest.approx(10.7, abs=0.05)
         assert tab.tradeoff_drawn.optimum.bc == pytest.approx(6.47, abs=0.01)
         assert "NOT robustly stable" in tab.summary.text()
+        screenshot(window, "tab_transparency", tab.plot_views())
         tab.optimum_button.click()
         assert tab.bc == pytest.approx(tab.tradeoff_drawn.optimum.bc, rel=1e-5)
     window.undo_stack.undo()
@@ -158,10 +162,3 @@ def test_refused_value_shows_reason(window, qtbot):
     tab.fields["alpha"].spin.setValue(1.5)
     assert tab.fields["alpha"].error.isVisibleTo(tab)
     assert window.model.profile.wall.alpha == 0.5
-
-
-def test_screenshot(window, qtbot, screenshot):
-    tab = show(window, qtbot)
-    tab.fields["hold"].set_value("discrete")
-    settle(window, qtbot, tab)
-    screenshot(window, "tab_transparency", tab.plot_views())
