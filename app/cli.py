@@ -60,7 +60,9 @@ PLOT_SECTIONS = {"transparency": "wall", "robustness": "wall", "step": "wall", "
 
 
 def _parser() -> argparse.ArgumentParser:
-    from analysis.study.displays import DISPLAY_KINDS
+    # the profile loader's display names, not analysis.study's DISPLAY_KINDS (the same names): the
+    # parser then loads no analysis.study, and `zwidth --help` or a usage error costs half as much
+    from analysis.profiles.schema import DISPLAYS
 
     parser = argparse.ArgumentParser(
         prog="zwidth",
@@ -73,7 +75,7 @@ def _parser() -> argparse.ArgumentParser:
     analyze.add_argument("--json", action="store_true", help="print the summary as JSON")
     design = sub.add_parser("design", help="print the conservative designs and the design chart")
     design.add_argument("profile", metavar="PROFILE", help="profile JSON file")
-    design.add_argument("--display", choices=tuple(DISPLAY_KINDS),
+    design.add_argument("--display", choices=DISPLAYS,
                         help="display type (default: the profile's)")
     design.add_argument("--json", action="store_true", help="print the designs as JSON")
     bench = sub.add_parser("bench", help="run the benchmarks and print their table")

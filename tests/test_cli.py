@@ -11,7 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from analysis.study import display_kind
+from analysis.profiles.schema import DISPLAYS
+from analysis.study import DISPLAY_KINDS, display_kind
 from app.cli import format_table
 from cli_runner import console_script, run_cli, run_process
 
@@ -151,6 +152,8 @@ def test_design_text_and_bad_display(capsys):
     r = run_cli(capsys, "design", RIGID)
     assert r.returncode == 0 and "b_c" in r.stdout
     assert run_cli(capsys, "design", RIGID, "--display", "nonsense").returncode == 2
+    # --display offers the profile loader's names (the parser loads no analysis.study): the display kinds
+    assert DISPLAYS == tuple(DISPLAY_KINDS)
 
 
 @pytest.mark.parametrize("plot,ext", [("bound", "png"), ("range", "svg"), ("chart", "csv"), ("map", "svg"),
