@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -118,10 +119,25 @@ def test_long_chart_runs_off_the_gui_thread_while_edits_are_served(win, qtbot):
 
 
 def test_newer_request_supersedes_and_cancel_keeps_last_result(win, qtbot):
+    """The first and third chart jobs are held on the worker until they are stopped (superseded,
+    cancelled), so that they surely run meanwhile on any machine, on the default grid (they used to
+    be made long instead: 200 points, seconds of work); the second is the real chart."""
     g = win.graph
-    g.set_params("design_chart", points=200)
+    inner = g.function("design_chart")
+    jobs: list[int] = []
+
+    def held(request, progress, cancelled):
+        jobs.append(len(jobs))
+        if len(jobs) != 2:
+            for _ in range(12000):  # at most a minute: the test stops it long before
+                if cancelled():
+                    return None
+                time.sleep(0.005)
+        return inner(request, progress, cancelled)
+
+    g.replace_function("design_chart", held)
     win.tabs.setCurrentWidget(win.tab(DesignTab))
-    qtbot.waitUntil(lambda: win.runner.is_running("design_chart"), timeout=5000)
+    qtbot.waitUntil(lambda: win.runner.is_running("design_chart") and bool(jobs), timeout=5000)
     # a device change while it runs: the running job is superseded, its result dropped
     win.panel.chain.fields[("masses", 0)].spin.setValue(0.3)
     qtbot.waitUntil(lambda: g.is_fresh("design_chart"), timeout=60000)
