@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from analysis.profiles import ControllerSection, bundled_profiles, load_profile, save_profile
-from analysis.sampled import VelocityFilter, load_trials, score_trials
+from analysis.sampled import VelocityFilter, ZWidthRegion, load_trials, score_trials
 from analysis import study
 from cli_runner import run_cli
 
@@ -29,12 +29,18 @@ def profile_file(tmp_path_factory):
     return d / "p.json"
 
 
+@pytest.fixture(scope="module")
+def region(profile_file) -> ZWidthRegion:
+    """The analysis's region of the profile (the reference the export and the report are compared with)."""
+    return study.zwidth_region(load_profile(profile_file))
+
+
 def _csv(path: Path) -> tuple[list[str], list[list[float]]]:
     rows = [r for r in csv.reader(path.read_text(encoding="utf-8").splitlines()) if r and not r[0].startswith("#")]
     return rows[0], [[float(x) if x else math.nan for x in r] for r in rows[1:]]
 
 
-def test_export_region_csv_has_the_region_in_the_header_units(capfd, profile_file, tmp_path):
+def test_export_region_csv_has_the_region_in_the_header_units(capfd, profile_file, tmp_path, region):
     out = tmp_path / "region.csv"
     proc = run_cli(capfd, "export-plot", str(profile_file), "--plot", "zwidth-region", "-o", str(out))
     assert proc.returncode == 0, proc.stderr
@@ -42,8 +48,7 @@ def test_export_region_csv_has_the_region_in_the_header_units(capfd, profile_fil
     assert header[0].endswith(": B [N·s/m]") and header[1].endswith(": K [N/m]")
     assert header[0].startswith("exact largest stable K") and "first-order low-pass at 60 Hz" in header[0]
     assert any(h.startswith("two-port limit K (eq. 9)") for h in header)
-    p = load_profile(profile_file)
-    r = study.zwidth_region(p)
+    p, r = load_profile(profile_file), region
     data = np.array([row[:2] for row in rows[:12]])
     np.testing.assert_allclose(data[:, 0], r.b, rtol=1e-12)
     np.testing.assert_allclose(data[:, 1], r.k_max, rtol=1e-12)
@@ -69,16 +74,18 @@ def test_export_filter_optimum_csv(capfd, profile_file, tmp_path):
     assert o.current == F and study.optimum_verdict(o) in out.read_text(encoding="utf-8")
 
 
-def test_report_has_the_zwidth_section_only_with_the_controller_section(profile_file):
+def test_report_has_the_zwidth_section_only_with_the_controller_section(profile_file, region):
     from app.report.content import gather
 
-    p = load_profile(profile_file)
-    c = gather(p, sampled=False)
-    r = study.zwidth_region(p)
+    # the Z-width parts alone: the section is written as in the whole report (gather writes a section
+    # when all its parts are asked), without the design chart
+    zwidth_parts = ("zwidth_region", "zwidth_optimum")
+    p, r = load_profile(profile_file), region
+    c = gather(p, sampled=False, parts=zwidth_parts)
     assert c.numbers["zwidth.area_linear"][0] == r.area_linear
     assert c.numbers["zwidth.trials_wrong"][0] == score_trials(r, load_trials(p.controller.trials)).wrong_count
     assert any(s.title.startswith("Controller as built") for s in c.sections)
     verdict = html.escape(study.optimum_verdict(c.results["zwidth_optimum"]))
     assert any(verdict in par for s in c.sections for par in s.paragraphs)
-    plain = gather(load_profile(bundled_profiles()["hbfd"]), sampled=False)
+    plain = gather(load_profile(bundled_profiles()["hbfd"]), sampled=False, parts=zwidth_parts)
     assert "zwidth.area_linear" not in plain.numbers and "zwidth_region" not in plain.results
