@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import pytest
 from conftest import coarse_profile
-from PySide6.QtCore import QRect, QRectF
+from PySide6.QtCore import QRect, QRectF, Qt
 from PySide6.QtGui import QImage, QPainter
 from PySide6.QtWidgets import QGraphicsTextItem, QLabel, QScrollArea, QWidget
 
@@ -111,6 +111,22 @@ def _panel_problems(win, where: str, panel: QScrollArea) -> list[str]:
     need = panel.widget().minimumSizeHint().width()
     if panel.viewport().width() < need and not panel.horizontalScrollBar().isVisible():
         out.append(f"{where}: {panel.viewport().width()} px shown of {need}, cut on the right")
+    return out
+
+
+def _side_problems(where: str, tab: QWidget) -> list[str]:
+    """Every visible scroll area of the tab that scrolls vertically only (the settings beside the
+    plots of Renderable space and Workspace, the text panes) shows its contents' whole width (the tab
+    itself may scroll: where the area sits is not checked here)."""
+    out = []
+    for area in tab.findChildren(QScrollArea):
+        if (not area.isVisible() or area.widget() is None
+                or area.horizontalScrollBarPolicy() != Qt.ScrollBarPolicy.ScrollBarAlwaysOff):
+            continue
+        need = area.widget().minimumSizeHint().width()
+        if area.viewport().width() < need:
+            out.append(f"{where} {area.objectName() or 'settings'}: {area.viewport().width()} px shown of "
+                       f"{need}, cut on the right")
     return out
 
 
@@ -208,7 +224,7 @@ def _check_tab(win, qtbot, sweep: Sweep, run: Pass, where: str, tab: QWidget) ->
         # of the event loop when it first shows it (a wrapped label's height follows its new text)
         problems += _settled(qtbot, lambda: [f"{where}: {p}" for p in layout_problems(win, tab)])
     if run.whole and sweep.whole:
-        problems += _settled(qtbot, lambda: _tab_problems(where, tab))
+        problems += _settled(qtbot, lambda: _tab_problems(where, tab) + _side_problems(where, tab))
     if run.whole and sweep.tall:
         problems += _settled(qtbot, lambda: plot_height_problems(where, tab)[0] + scroll_problems(where, tab))
     if run.whole and (sweep.whole or sweep.tall):
