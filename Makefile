@@ -12,7 +12,7 @@ PROFILE ?= resources/profiles/hbfd.json
 SPHINX := $(VENV)/bin/sphinx-build -E -W --keep-going -q -b html docs docs/_build/html
 
 # The test runner: headless, on every core (pytest-xdist), no cache in the tree.
-PYTEST := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -n auto -p no:cacheprovider
+PYTEST := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -n auto --dist worksteal -p no:cacheprovider
 # The numerics tests (fitting, identification) run under another OpenBLAS kernel than the CPU's
 # own, so that a test which holds only on one CPU's floating-point path fails here and not on a
 # contributor's machine (issue 21): `make test` runs them under SECOND_KERNEL, `make test-all`
