@@ -13,6 +13,9 @@ SPHINX := $(VENV)/bin/sphinx-build -E -W --keep-going -q -b html docs docs/_buil
 
 # The test runner: headless, on every core (pytest-xdist), no cache in the tree.
 PYTEST := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -n auto --dist worksteal -p no:cacheprovider
+# One process: the second-kernel numerics run beside the suite's workers, so a worker pool of
+# their own would only add its start-up and collection (about 16 s of CPU per worker).
+PYTEST_ONE := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -p no:cacheprovider
 # The numerics tests (fitting, identification) run under another OpenBLAS kernel than the CPU's
 # own, so that a test which holds only on one CPU's floating-point path fails here and not on a
 # contributor's machine (issue 21): `make test` runs them under SECOND_KERNEL, `make test-all`
@@ -57,7 +60,7 @@ test-suite: setup
 # The fitting and identification tests (the `numerics` marker, in tests/test_identify_*.py) under
 # the second OpenBLAS kernel.
 test-kernel: setup
-	OPENBLAS_CORETYPE=$(SECOND_KERNEL) $(PYTEST) -m "numerics and not slow" tests/test_identify_*.py
+	OPENBLAS_CORETYPE=$(SECOND_KERNEL) $(PYTEST_ONE) -m "numerics and not slow" tests/test_identify_*.py
 
 # The benchmarks once, quickly: timing targets are reported, never failed on; a crash fails.
 bench-quick: setup
