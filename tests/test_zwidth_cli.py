@@ -85,7 +85,8 @@ def test_report_has_the_zwidth_section_only_with_the_controller_section(profile_
     assert c.numbers["zwidth.area_linear"][0] == r.area_linear
     assert c.numbers["zwidth.trials_wrong"][0] == score_trials(r, load_trials(p.controller.trials)).wrong_count
     assert any(s.title.startswith("Controller as built") for s in c.sections)
-    verdict = html.escape(study.optimum_verdict(c.results["zwidth_optimum"]))
+    # the verdict's sentence, its numbers typeset as the report's text prints them (a true minus)
+    verdict = study.rich_numbers(html.escape(study.optimum_verdict(c.results["zwidth_optimum"])))
     assert any(verdict in par for s in c.sections for par in s.paragraphs)
     plain = gather(load_profile(bundled_profiles()["hbfd"]), sampled=False, parts=zwidth_parts)
     assert "zwidth.area_linear" not in plain.numbers and "zwidth_region" not in plain.results
