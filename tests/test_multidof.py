@@ -333,6 +333,31 @@ def test_workspace_map_is_mirror_symmetric_and_bounded_by_its_minimum() -> None:
     assert k_at <= min(critical_wall_stiffness(dev, 2.0, 1, normal=u) for u in check_directions(2, 90)) * (1 + 1e-9)
 
 
+def test_workspace_map_reports_progress_and_stops_when_cancelled() -> None:
+    """The one progress and cancel protocol (analysis.progress): progress after each row, the
+    crossings, the refinement and each Z-width point, monotone up to its total; a cancel during the
+    Z-width layer stops it at the next point and the map is ``None``; the hooks change no result."""
+    fb = FiveBar()
+    xs, ys = np.array([-0.05, 0.05]), np.array([0.15, 0.2, 0.45])
+    calls: list[tuple[int, int]] = []
+    m = workspace_map(fb, x=xs, y=ys, damping=2.0, delay_samples=1, directions=4, zwidth_b=[1.0, 5.0],
+                      progress=lambda done, total: calls.append((done, total)))
+    plain = workspace_map(fb, x=xs, y=ys, damping=2.0, delay_samples=1, directions=4, zwidth_b=[1.0, 5.0])
+    assert np.array_equal(m.worst_stiffness, plain.worst_stiffness, equal_nan=True)
+    assert np.array_equal(m.zwidth_area, plain.zwidth_area, equal_nan=True)
+    total = ys.size + 2 + xs.size * ys.size
+    assert {t for _, t in calls} == {total} and calls[-1] == (total, total)
+    done = [d for d, _ in calls]
+    assert done == sorted(done) and done[:ys.size] == [1, 2, 3] and len(calls) == ys.size + 2 + 4 + 1
+    def cancelled() -> bool:  # true once the first Z-width point is done
+        return sum(1 for d, _ in calls if d > ys.size + 2) >= 1
+
+    calls.clear()
+    assert workspace_map(fb, x=xs, y=ys, damping=2.0, delay_samples=1, directions=4, zwidth_b=[1.0, 5.0],
+                         progress=lambda done, total: calls.append((done, total)), cancelled=cancelled) is None
+    assert calls[-1] == (ys.size + 3, total)  # stopped after the first point's area
+
+
 @pytest.mark.parametrize("position", [(0.0, 0.2), (0.1, 0.15)])
 def test_simulated_growth_at_points_of_the_map_equals_the_spectral_radius(position: tuple) -> None:
     fb = FiveBar(distal_masses=(0.012, 0.024))

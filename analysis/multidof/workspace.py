@@ -33,6 +33,7 @@ from analysis.multidof.limits import check_directions, first_crossings, worst_no
 from analysis.multidof.loci import frequency_first_crossings
 from analysis.multidof.loop import loop_parts
 from analysis.multidof.model import RigidCartesianDevice
+from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.sampled.terminations import HANDS_OFF, Grasp, Termination, god_object_wall
 from analysis.sampled.zwidth import zwidth_region
 from analysis.transparency.five_bar import FiveBar
@@ -196,10 +197,12 @@ def _pencils(devices: list[RigidCartesianDevice], shapes: np.ndarray, damping: f
     return np.concatenate(P0s), np.concatenate(P1s)
 
 
+@none_if_cancelled
 def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, delay_samples: int = 1, *,
                   sample_time: float = 1e-3, grasp: Grasp = HANDS_OFF, velocity_filter: VelocityFilter | None = None,
                   directions: int = 12, k_range: tuple[float, float] = (1.0, 1e9), method: str = "loci",
-                  zwidth_b: object = None) -> WorkspaceMap:
+                  zwidth_b: object = None, progress: Progress | None = None,
+                  cancelled: Cancelled | None = None) -> WorkspaceMap | None:
     """The isotropic and the worst plane-wall critical stiffness over a grid of handle positions.
 
     Parameters
@@ -232,11 +235,17 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
         Wall dampings [N s/m] (at least two, increasing) of the third layer: the 1-DOF Z-width
         area along each point's worst normal (:attr:`WorkspaceMap.zwidth_area`); ``None``
         (default) leaves it out.  It costs one :func:`analysis.sampled.zwidth_region` a point.
+    progress : Progress or None, optional
+        Called as ``progress(done, total)`` after each grid row's devices, after the crossings of
+        every wall, after the refinement of the worst point and after each point's Z-width area
+        (the one protocol of :mod:`analysis.progress`).
+    cancelled : Cancelled or None, optional
+        Polled between those steps; true stops the map.
 
     Returns
     -------
-    WorkspaceMap
-        The maps and the design bound.
+    WorkspaceMap or None
+        The maps and the design bound; ``None`` once cancelled.
 
     Raises
     ------
@@ -254,14 +263,18 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
         raise ValidationError("method", " or ".join(repr(m) for m in METHODS), method)
     dirs = check_directions(2, D)
     shapes = np.concatenate([np.eye(2)[None], dirs[:, :, None] * dirs[:, None, :]])
+    total = ys.size + 2 + (xs.size * ys.size if zwidth_b is not None else 0)
     devices, points = [], []
     for j, yv in enumerate(ys):
+        check_cancelled(cancelled)
         for i, xv in enumerate(xs):
             try:
                 devices.append(five_bar_device(linkage, (xv, yv), sample_time))
             except ValidationError:
                 continue
             points.append((j, i))
+        report_progress(progress, j + 1, total)
+    check_cancelled(cancelled)
     if not devices:
         raise ValidationError("x, y", "a grid with at least one reachable, non-singular position", "none")
     if method == "loci":
@@ -269,6 +282,8 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
     else:
         ks = first_crossings(*_pencils(devices, shapes, b, delay_samples, grasp, velocity_filter), k_range)
     ks = ks.reshape(len(devices), D + 1)
+    report_progress(progress, ys.size + 1, total)
+    check_cancelled(cancelled)
     shape = (ys.size, xs.size)
     reachable = np.zeros(shape, dtype=bool)
     k_iso, k_worst = np.full(shape, math.nan), np.full(shape, math.nan)
@@ -284,13 +299,19 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
     best_k, best_n = (refined.stiffness, refined.normal) if refined.stiffness < k_worst[j, i] else \
         (float(k_worst[j, i]), normal[j, i])
     minimum = WorkspaceMinimum(stiffness=float(best_k), position=np.array([xs[i], ys[j]]), normal=np.asarray(best_n))
+    done = ys.size + 2
+    report_progress(progress, done, total)
     area, bz = None, None
     if zwidth_b is not None:
         term = None if grasp.hands_off else Termination(grasp, god_object_wall())
         area = np.full(shape, math.nan)
         for dev, (j, i) in zip(devices, points):
+            check_cancelled(cancelled)
             region = zwidth_region(normal_device(dev, normal[j, i]), zwidth_b, delay_samples, velocity_filter,
                                    termination=term, k_range=k_range, passive=False)
             area[j, i], bz = region.area_linear, region.b
+            done += 1
+            report_progress(progress, done, total)
+        report_progress(progress, total, total)  # the unreachable points have no area to compute
     return WorkspaceMap(x=xs, y=ys, reachable=reachable, k_max=k_iso, worst_stiffness=k_worst, worst_normal=normal,
                         minimum=minimum, directions=D, zwidth_area=area, zwidth_b=bz)

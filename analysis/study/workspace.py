@@ -42,7 +42,7 @@ from analysis.multidof import (
 )
 from analysis.profiles.model import Profile
 from analysis.profiles.multidof import MultiDofSection
-from analysis.progress import Cancelled, Progress, check_cancelled, none_if_cancelled, report_progress
+from analysis.progress import Cancelled, OperationCancelled, Progress, check_cancelled, none_if_cancelled, report_progress
 from analysis.study.displays import profile_filter
 from analysis.study.requests import delays
 from analysis.transparency.five_bar import FiveBar
@@ -284,8 +284,11 @@ def workspace_study(request: WorkspaceRequest | Profile, *, progress: Progress |
     for i, ys in enumerate(rows):
         check_cancelled(cancelled)
         if _reaches(req.linkage, x, ys, req.sample_time):
-            bands.append(workspace_map(req.linkage, x, ys, req.damping, req.delay_samples, sample_time=req.sample_time,
-                                       velocity_filter=req.velocity_filter))
+            band = workspace_map(req.linkage, x, ys, req.damping, req.delay_samples, sample_time=req.sample_time,
+                                 velocity_filter=req.velocity_filter, cancelled=cancelled)
+            if band is None:  # cancelled inside the band
+                raise OperationCancelled("the workspace map was cancelled")
+            bands.append(band)
         else:
             bands.append(None)
         report_progress(progress, i + 1, len(rows))
