@@ -10,6 +10,11 @@ import pytest
 
 # The suite is headless: Qt renders offscreen unless the caller asks for a real platform.
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+# One BLAS thread per test process, as the GUI and `zwidth bench` run (app/cli.py): the xdist workers
+# are the parallelism, and OpenBLAS threads on top of them spin for the same cores (scipy's expm of
+# an 11x11 matrix took 4.9 ms instead of 0.04 ms, the HBFD simulation 0.9 CPU-s instead of 0.08).
+# Set before numpy is imported; an explicit OPENBLAS_NUM_THREADS (issue 21's check with 2) wins.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
 for _p in (os.path.dirname(_HERE), _HERE):  # the repository root (analysis) and tests/ (reference, strategies)
