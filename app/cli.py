@@ -9,6 +9,7 @@ Usage::
                                   print the analysis summary of a profile (never imports Qt)
     zwidth design PROFILE [--display impedance|admittance] [--json]
     zwidth export-plot PROFILE --plot bound|reserve|range|chart|... -o FILE.png|svg|csv
+                                  [--robust off|corners|samples [--samples N]]  (--plot space only)
     zwidth report PROFILE -o report.pdf|report.html [--page-size a4|letter]
     zwidth bench [--quick]
     zwidth identify FILE[:QUANTITY[:BOUNDARY]]... --masses N [--sample-time T] -o PROFILE.json
@@ -49,6 +50,11 @@ PLOTS = {"bound": "bound", "reserve": "reserve", "range": "range", "chart": "cha
 DEFAULT_SECTION_PLOTS = ("zwidth-region", "filter-optimum")
 #: the renderable space's slices (issue 24), computed with the default renderable section when the profile has none
 RENDERABLE_PLOTS = ("space", "m-width")
+#: ``--robust`` of ``export-plot --plot space``: the keys of analysis.study.ROBUST_KINDS, spelt out so that the
+#: parser loads no analysis.study (test_renderable_robust_report checks they are the same)
+ROBUST_CHOICES = ("off", "corners", "samples")
+#: ``--samples``' default: analysis.study.ROBUST_SAMPLES, the tab's (checked by the same test)
+ROBUST_SAMPLES = 16
 #: the workspace of a multi-DOF linkage (issue 25), computed with the default multidof section when the profile has none
 MULTIDOF_PLOTS = ("workspace", "workspace-polar")
 #: the plots that draw the profile's hardware trials: a bad trials file fails them
@@ -96,6 +102,12 @@ def _parser() -> argparse.ArgumentParser:
     export.add_argument("--dpi", type=float, default=150.0,
                         help="PNG resolution for the default width (the plot is %.1f in wide; default 150)"
                         % (658 / 96))
+    export.add_argument("--robust", choices=ROBUST_CHOICES, default="off",
+                        help="--plot space only: overlay the robust space over the profile's identified parameter "
+                        "box, its corners or N seeded samples of it, as the Renderable space tab does (default off; "
+                        "the profile needs identified intervals that bound a box)")
+    export.add_argument("--samples", type=int, metavar="N",
+                        help=f"devices drawn from the box with --robust samples (default {ROBUST_SAMPLES})")
     report = sub.add_parser("report", help="write the design report as PDF or HTML (headless)",
                             description="Write the design report of a profile; the format comes from the "
                             "extension of -o (.pdf or .html).")
@@ -248,14 +260,37 @@ def _headless() -> None:
         os.environ["QT_QPA_PLATFORM"] = "offscreen"
 
 
+def _export_usage(args: argparse.Namespace, profile=None) -> str | None:
+    """The usage error of ``export-plot``'s options (``None`` when none): the one check of each option,
+    and, given the loaded ``profile``, whether it offers the robust space that ``--robust`` asks for."""
+    if Path(args.output).suffix.lower() not in (".png", ".svg", ".csv"):
+        return f"-o {args.output}: the extension must be .png, .svg or .csv"
+    for opt in (o for o in ("width", "height") if getattr(args, o) is not None and not 16 <= getattr(args, o) <= 20000):
+        return f"--{opt} must be between 16 and 20000 pixels"
+    if not 10 <= args.dpi <= 2400:
+        return "--dpi must be between 10 and 2400"
+    if args.robust != "off" and args.plot != "space":
+        return f"--robust {args.robust}: only --plot space draws the robust space"
+    if args.samples is not None:
+        from analysis.sampled.batch import MAX_DEVICES
+
+        if args.robust != "samples":
+            return "--samples needs --robust samples"
+        if not 1 <= args.samples <= MAX_DEVICES:
+            return f"--samples must be between 1 and {MAX_DEVICES}"
+    if profile is None or args.robust == "off":
+        return None
+    from analysis.study import robust_box_reason
+
+    reason = robust_box_reason(profile)
+    return None if reason is None else f"--robust {args.robust}: no robust space: {reason}"
+
+
 def _export_plot(args: argparse.Namespace) -> int:
     fmt = Path(args.output).suffix.lower().lstrip(".")
-    if fmt not in ("png", "svg", "csv"):
-        return _usage("export-plot", f"-o {args.output}: the extension must be .png, .svg or .csv")
-    for opt in (o for o in ("width", "height") if getattr(args, o) is not None and not 16 <= getattr(args, o) <= 20000):
-        return _usage("export-plot", f"--{opt} must be between 16 and 20000 pixels")
-    if not 10 <= args.dpi <= 2400:
-        return _usage("export-plot", "--dpi must be between 10 and 2400")
+    problem = _export_usage(args)
+    if problem is not None:
+        return _usage("export-plot", problem)
     code = _clash("export-plot", args)
     if code is not None:
         return code
@@ -281,8 +316,12 @@ def _export_plot(args: argparse.Namespace) -> int:
     code = _clash("export-plot", args, profile)
     if code is not None:
         return code
+    problem = _export_usage(args, profile)
+    if problem is not None:
+        return _usage("export-plot", problem)
     _headless()
     from analysis.errors import ValidationError
+    from analysis.sampled.batch import DeviceFailed
 
     from app.report.content import gather
     from app.report.figures import FIG_SIZE, ensure_app, figure_parts, make_view
@@ -291,10 +330,18 @@ def _export_plot(args: argparse.Namespace) -> int:
     from app.views import export
 
     key = PLOTS[args.plot]
+    parts = figure_parts([key])
+    # the renderable slices draw the results of renderable_results alone: the robust space is --robust's
+    # choice here (default off), not the report's (its section takes the box's corners whenever there is one)
+    renderable = args.plot in RENDERABLE_PLOTS
     try:  # only what this figure draws (e.g. not the filter optimum for the region)
-        content = gather(profile, source=str(args.profile), parts=figure_parts([key]))
+        content = gather(profile, source=str(args.profile), parts=parts - {"renderable"} if renderable else parts)
+        if renderable:
+            from app.report.renderable_section import renderable_results
+
+            content.results.update(renderable_results(profile, args.robust, args.samples or ROBUST_SAMPLES))
         fig = make_view(content, key)
-    except ValidationError as err:
+    except (ValidationError, DeviceFailed) as err:
         return _error(f"{args.profile}: {err}")
     try:
         if fmt == "png":

@@ -20,7 +20,8 @@ not), ``RenderableRequest.of(profile, robust="corners")`` or ``robust="samples"`
 :class:`RobustBox` (the box's intervals, its corners or N seeded samples) and :func:`robust_study`
 computes the space every device of that batch has
 (:func:`analysis.sampled.robust_renderable_space` on the request's grid, qualities and settings, in
-the calling thread: ``workers=1``, so that the GUI's worker thread starts no process pool).
+the calling thread: ``workers=1``, so that the GUI's worker thread starts no process pool);
+:func:`robust_m_width` is the M-width every device of that batch has (the report's robust rows).
 """
 
 from __future__ import annotations
@@ -59,7 +60,7 @@ from analysis.study.requests import delays
 
 __all__ = ["GRASPS", "QUALITY_LABELS", "ROBUST_KINDS", "ROBUST_SAMPLES", "RenderableRequest", "RenderableStudy",
            "RobustBox", "renderable_section", "damping_axis", "damping_from_axis", "renderable_study", "k_max_at",
-           "environment_edits", "robust_box_reason", "robust_study"]
+           "environment_edits", "robust_box_reason", "robust_study", "robust_m_width"]
 
 #: The grasp sets of the ``stable`` quality by name (the keys of :data:`analysis.profiles.schema.GRASP_SETS`).
 GRASPS: dict[str, tuple[Grasp, ...]] = {"hands_off": (HANDS_OFF,), "firm": (HANDS_OFF, FIRM_GRASP),
@@ -399,6 +400,38 @@ def robust_study(request: RenderableRequest, *, progress: Progress | None = None
     return robust_renderable_space(devices, request.mass, request.damping, request.delay_samples,
                                    request.velocity_filter, request.acceleration, request.qualities,
                                    settings=request.settings, workers=1, progress=progress, cancelled=cancelled)
+
+
+def robust_m_width(request: RenderableRequest) -> MWidth:
+    """The M-width every device of the request's batch has: the intersection of their M-widths.
+
+    Each device's M-width (:func:`analysis.sampled.m_width`, at ``B = K = 0``) is an interval around
+    ``M = 0`` for every quality, so the masses that every device renders are
+    ``[max m_min, min m_max]``, for all qualities and for each.
+
+    Parameters
+    ----------
+    request : RenderableRequest
+        A request with a batch (``RenderableRequest.of(profile, robust="corners")``).
+
+    Returns
+    -------
+    MWidth
+        The batch's M-width [kg] (its ``controller`` is the request's, the same for every device).
+
+    Raises
+    ------
+    ValidationError
+        When the request has no batch (``robust``) or the box is refused.
+    """
+    if request.robust is None:
+        raise ValidationError("robust", "a batch: RenderableRequest.of(profile, robust='corners' or 'samples')", None)
+    widths = [m_width(d, request.delay_samples, request.velocity_filter, request.acceleration, request.qualities,
+                      settings=request.settings) for d in request.robust.devices(request.device)]
+    by_quality = {q: (max(w.by_quality[q][0] for w in widths), min(w.by_quality[q][1] for w in widths))
+                  for q in widths[0].qualities}
+    return MWidth(max(w.m_min for w in widths), min(w.m_max for w in widths), by_quality, widths[0].qualities,
+                  widths[0].controller)
 
 
 def k_max_at(space: RenderableSpace | RobustRenderableSpace, mass: float, damping: float, quality: str = "all") -> float:

@@ -3,25 +3,79 @@
 Qt-free: :func:`renderable_part` (called by :func:`app.report.content.gather`) gives the M-width of
 Colonnese & Okamura (RSS 2012) for all the qualities asked and for each, the volume of the renderable
 (M, B, K) space of Colonnese & Chan (IEEE Haptics Symposium 2016) and the largest K at the rendered
-(M, B), all from :func:`analysis.study.renderable_study`.  Its figures (needing Qt) are in
-:mod:`app.report.renderable_figures`.
+(M, B), all from :func:`analysis.study.renderable_study`.  When the profile's identified intervals bound
+a parameter box (:func:`analysis.study.robust_box_reason` is ``None``), the section adds the robust space
+over the box's corners, as the tab's "Robust over" overlay computes it
+(``RenderableRequest.of(profile, robust="corners")``, :func:`analysis.study.robust_study`): its volume,
+its largest K at the rendered (M, B) and the M-width every corner renders
+(:func:`analysis.study.renderable.robust_m_width`); without a box, one sentence says why.  Its figures
+(needing Qt) are in :mod:`app.report.renderable_figures`; :func:`renderable_results` are the results they
+draw, computed alone by ``zwidth export-plot --plot space --robust ...``.
 """
 
 from __future__ import annotations
 
 import html
+from typing import Any
 
 from analysis.profiles import Profile
 from analysis.profiles.schema import GRASP_SETS
-from analysis.study import QUALITY_LABELS, format_number, k_max_at, renderable_section, renderable_study
+from analysis.study import (
+    QUALITY_LABELS,
+    ROBUST_SAMPLES,
+    RenderableRequest,
+    format_number,
+    k_max_at,
+    renderable_section,
+    renderable_study,
+    robust_box_reason,
+    robust_study,
+)
+from analysis.study.renderable import robust_m_width
 from app.report.model import Numbers, Part, Row, Section
 
-__all__ = ["renderable_part"]
+__all__ = ["renderable_part", "renderable_results", "REPORT_ROBUST"]
+
+#: How the report takes the identified box for its robust space (a key of ``ROBUST_KINDS``): its corners.
+REPORT_ROBUST = "corners"
 
 
 def _row(numbers: Numbers, key: str, label: str, value: float, unit: str) -> Row:
     numbers[key] = (value, format_number(value))  # the number table: ASCII, as the CLI prints it
     return Row(label, "", format_number(value, rich=True), unit)
+
+
+def renderable_results(profile: Profile, robust: str = "off", samples: int = ROBUST_SAMPLES) -> dict[str, Any]:
+    """The results the section's figures draw: ``renderable_study`` and, when ``robust`` (a key of
+    ``ROBUST_KINDS``) is not ``"off"`` and the profile has a box, ``renderable_robust`` (the robust
+    space, :func:`analysis.study.robust_study`) and ``renderable_robust_label`` (its batch in words,
+    as the tab's overlay labels it); ``samples`` for ``robust="samples"``."""
+    out: dict[str, Any] = {"renderable_study": renderable_study(profile)}
+    req = RenderableRequest.of(profile, robust=robust, samples=samples)
+    if req.robust is not None:
+        out["renderable_robust"] = robust_study(req)
+        out["renderable_robust_label"] = req.robust.label(req.device)
+    return out
+
+
+def _robust_rows(profile: Profile, results: dict[str, Any], numbers: Numbers) -> tuple[list[Row], str]:
+    """The robust space's rows (M-width, volume, largest K at the rendered (M, B)) and its sentence."""
+    sec = renderable_section(profile)
+    robust, label = results["renderable_robust"], results["renderable_robust_label"]
+    w = robust_m_width(RenderableRequest.of(profile, robust=REPORT_ROBUST))
+    rows = [_row(numbers, "renderable.robust.m_min", f"robust M-width, lowest mass ({label})", w.m_min, "kg"),
+            _row(numbers, "renderable.robust.m_max", f"robust M-width, highest mass ({label})", w.m_max, "kg"),
+            _row(numbers, "renderable.robust.m_width", f"robust M-width ({label})", w.width, "kg"),
+            _row(numbers, "renderable.robust.volume", f"robust volume ({label})", robust.volume,
+                 "kg&middot;decades&sup2;"),
+            _row(numbers, "renderable.robust.k_max_at_environment",
+                 f"robust largest K at the rendered (M, B), nearest grid point ({label})",
+                 k_max_at(robust, sec.virtual_mass, sec.virtual_damping), "N/m")]
+    text = (f"The robust space is the space that every device of the identified parameter box renders, taken "
+            f"over the {html.escape(label)}: the smallest K<sub>max</sub> over them at each (M, B) of the same grid "
+            f"(dashed in the figure; hatched where this device renders K and the box does not); the robust M-width "
+            f"is the interval of the masses that every one of them renders at B = K = 0.")
+    return rows, text
 
 
 def renderable_part(profile: Profile) -> Part:
@@ -30,7 +84,9 @@ def renderable_part(profile: Profile) -> Part:
     if profile.renderable is None:
         return Part()
     sec = renderable_section(profile)
-    study = renderable_study(profile)
+    reason = robust_box_reason(profile)
+    results = renderable_results(profile, REPORT_ROBUST if reason is None else "off")
+    study = results["renderable_study"]
     w, sp = study.width, study.space
     numbers: Numbers = {}
     rows = [_row(numbers, "renderable.m_min", "M-width, lowest mass (all qualities)", w.m_min, "kg"),
@@ -59,5 +115,9 @@ def renderable_part(profile: Profile) -> Part:
            f"to {num(sp.damping[-1])} N&middot;s/m. The rendered environment is M = "
            f"{num(sec.virtual_mass)} kg, B = {num(sec.virtual_damping)} N&middot;s/m, K = "
            f"{num(sec.virtual_stiffness)} N/m.")
-    return Part((Section("Renderable space and M-width", (par,), tuple(rows)),), numbers,
-                {"renderable_study": study})
+    if reason is None:
+        more, after = _robust_rows(profile, results, numbers)
+        rows += more
+    else:
+        after = f"No robust space over an identified box: {html.escape(reason)}."
+    return Part((Section("Renderable space and M-width", (par,), tuple(rows), (after,)),), numbers, results)
