@@ -119,3 +119,29 @@ def test_actuator_alone_reports_the_handle_side_unbounded_and_no_robust_design()
     free = {k: v for k, v, f in zip(fit.keys, fit.intervals.values(), fit.fixed) if not f}
     with pytest.raises(ValidationError):
         robust_max_stiffness(fit.device, 100.0, free)
+
+
+def test_a_repeated_conditional_solve_is_not_run_again():
+    """The restarts of a crossing often repeat the walk's own start (profile.Profiler.conditional):
+    the same held value from the same start gives the first solve's result, not a second solve,
+    and what the caller does to the returned array does not change it."""
+    from analysis.identify import FitProblem, Profiler
+    from analysis.identify.params import ChainParameters
+
+    rng = np.random.default_rng(5)
+    w = np.geomspace(1.0, 100.0, 60)
+    h = with_noise(-1.0 / (0.7 * w**2 + 1j * 3.0 * w), rng)
+    base = ChainParameters(np.array([[0.7]]), np.zeros((1, 0)), np.zeros((1, 0)), np.array([[3.0]]))
+    problem = FitProblem((make_measurement(w, h, "actuator", "free"),), ("masses[0]", "ground_dampings[0]"), base)
+    theta = np.log([0.7, 3.0])
+    prof = Profiler(problem, theta, float(problem.residual(theta) @ problem.residual(theta)), np.zeros((0, 0)))
+    start = np.array([math.log(2.0)])
+    rss, other = prof.conditional(0, math.log(0.8), start)
+    other[:] = 99.0
+    again, other2 = prof.conditional(0, math.log(0.8), start)
+    assert prof.solves == 1 and again == rss and other2[0] != 99.0
+    fresh = Profiler(problem, theta, prof.rss, np.zeros((0, 0)))
+    assert fresh.conditional(0, math.log(0.8), start)[0] == rss  # what a solve gives
+    prof.conditional(0, math.log(0.8), np.array([math.log(4.0)]))
+    prof.conditional(0, math.log(0.9), start)
+    assert prof.solves == 3

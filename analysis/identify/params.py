@@ -15,6 +15,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -62,6 +63,13 @@ def parse_key(key: str, n: int) -> tuple[str, int]:
     if i >= size:
         raise ParameterKeyError(key, f"index 0..{size - 1} for {name} of a {n}-mass chain")
     return name, i
+
+
+@lru_cache(maxsize=256)
+def _slots(keys: tuple[str, ...], n: int) -> tuple[tuple[str, int], ...]:
+    """:func:`parse_key` of each of ``keys`` (read once per key set, not at each of the thousands of
+    model evaluations of a fit; a bad key raises as :func:`parse_key` does and is not cached)."""
+    return tuple(parse_key(k, n) for k in keys)
 
 
 def parameter_keys(n: int, ground: Iterable[int] | None = None) -> list[str]:
@@ -248,8 +256,7 @@ class ChainParameters:
         rows = np.atleast_2d(np.asarray(rows, dtype=float))
         P = rows.shape[0]
         arrays = {f: np.repeat(getattr(base, f)[:1], P, axis=0) for f in FIELDS}
-        for j, key in enumerate(keys):
-            name, i = parse_key(key, base.n)
+        for j, (name, i) in enumerate(_slots(tuple(keys), base.n)):
             arrays[name][:, i] = rows[:, j]
         return cls(**arrays)
 

@@ -127,13 +127,15 @@ class Profiler:
         self.lo, self.hi = log_bounds(problem)
         self.best_rss, self.best_theta = self.rss, self.theta.copy()
         self.solves = 0
+        self._done: dict[tuple[int, float, bytes], tuple[float, np.ndarray]] = {}
         self.extra_starts = tuple(np.asarray(x, float) for x in extra_starts)
 
     def conditional(self, j: int, tj: float, start: np.ndarray) -> tuple[float, np.ndarray]:
         """``RSS_p(tj)`` and the other parameters at it, from ``start``.
 
         Records the solve, and the point as :attr:`best_theta` when it fits better than the
-        optimum.
+        optimum.  A solve from the same (clipped) start at the same ``tj`` is not run again (the
+        restarts of a crossing often repeat the walk's own start): its result is returned.
 
         Parameters
         ----------
@@ -153,12 +155,17 @@ class Profiler:
         full = np.empty(self.theta.size)
         full[j] = tj
         full[others] = np.clip(start, self.lo[others] + 1e-9, self.hi[others] - 1e-9)
+        key = (j, float(tj), full.tobytes())
+        if key in self._done:
+            rss, out = self._done[key]
+            return rss, out.copy()
         self.solves += 1
         rss, full = solve_held(self.problem, full, (self.problem.keys[j],), _NFEV, _TOL)
         if rss < self.best_rss:
             self.best_rss = rss
             self.best_theta = full
-        return rss, full[others]
+        self._done[key] = (rss, full[others])
+        return rss, full[others].copy()
 
     def tau(self, rss: float) -> float:
         """The profile t statistic's magnitude ``sqrt(max(RSS_p - reference, 0) / s^2)``.
