@@ -253,3 +253,28 @@ def test_export_plot_robust_usage_errors(capfd, tmp_path, boxed_path, args, word
     r = run_cli(capfd, "export-plot", boxed_path, *args, "-o", out)
     assert r.returncode == 2 and words in r.stderr, r.stderr
     assert not out.exists()
+
+
+def test_the_report_takes_corners_of_a_small_box_and_samples_of_a_large_one(boxed: Profile):
+    """Four corners (two boxed parameters) are taken whole; an identified HBFD boxes up to 14
+    parameters (16384 corners, each a whole space), so a box of more than four parameters is taken
+    as ROBUST_SAMPLES seeded samples; without a box nothing robust is asked."""
+    from app.report.renderable_section import report_robust_kind
+
+    assert report_robust_kind(boxed) == "corners"
+    assert report_robust_kind(_rigid()) == "off"
+    hbfd = coarse_sections(load_profile(bundled_profiles()["hbfd"]), "renderable")
+    keys = ("masses[0]", "masses[1]", "stiffnesses[0]", "dampings[0]", "ground_dampings[3]")
+    box = {k: (0.9 * v, 1.1 * v) for k, v in ((k, _value(hbfd, k)) for k in keys)}
+    five = hbfd.replace(identification=IdentificationSection(box))
+    assert report_robust_kind(five) == "samples"
+    assert RenderableRequest.of(five, robust="samples").robust.label(five.device) == \
+        f"{ROBUST_SAMPLES} samples of the identified box"
+    four = hbfd.replace(identification=IdentificationSection({k: box[k] for k in keys[:4]}))
+    assert report_robust_kind(four) == "corners" and 2 ** 4 == ROBUST_SAMPLES
+
+
+def _value(profile: Profile, key: str) -> float:
+    from analysis.identify import device_value
+
+    return device_value(profile.device, key)

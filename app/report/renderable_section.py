@@ -5,7 +5,8 @@ Colonnese & Okamura (RSS 2012) for all the qualities asked and for each, the vol
 (M, B, K) space of Colonnese & Chan (IEEE Haptics Symposium 2016) and the largest K at the rendered
 (M, B), all from :func:`analysis.study.renderable_study`.  When the profile's identified intervals bound
 a parameter box (:func:`analysis.study.robust_box_reason` is ``None``), the section adds the robust space
-over the box's corners, as the tab's "Robust over" overlay computes it
+over the box's corners (or 16 seeded samples of a box of more than four parameters), as the tab's
+"Robust over" overlay computes it
 (``RenderableRequest.of(profile, robust="corners")``, :func:`analysis.study.robust_study`): its volume,
 its largest K at the rendered (M, B) and the M-width every corner renders
 (:func:`analysis.study.renderable.robust_m_width`); without a box, one sentence says why.  Its figures
@@ -34,10 +35,22 @@ from analysis.study import (
 from analysis.study.renderable import robust_m_width
 from app.report.model import Numbers, Part, Row, Section
 
-__all__ = ["renderable_part", "renderable_results", "REPORT_ROBUST"]
+__all__ = ["renderable_part", "renderable_results", "REPORT_ROBUST", "report_robust_kind"]
 
-#: How the report takes the identified box for its robust space (a key of ``ROBUST_KINDS``): its corners.
+#: How the report takes the identified box for its robust space (a key of ``ROBUST_KINDS``): its
+#: corners while there are at most :data:`ROBUST_SAMPLES` of them (four boxed parameters), else that
+#: many seeded samples (an identified HBFD boxes 14 parameters: 16384 corners, each a whole space).
 REPORT_ROBUST = "corners"
+
+
+def report_robust_kind(profile: Profile) -> str:
+    """The batch the report's robust space takes: ``"off"`` without a box (:func:`robust_box_reason`),
+    ``"corners"`` for a box of at most :data:`ROBUST_SAMPLES` corners, else ``"samples"``
+    (:data:`ROBUST_SAMPLES` seeded devices, as the tab's "samples of the box")."""
+    if robust_box_reason(profile) is not None:
+        return "off"
+    req = RenderableRequest.of(profile, robust=REPORT_ROBUST)
+    return REPORT_ROBUST if 2 ** len(req.robust.intervals) <= ROBUST_SAMPLES else "samples"
 
 
 def _row(numbers: Numbers, key: str, label: str, value: float, unit: str) -> Row:
@@ -62,7 +75,7 @@ def _robust_rows(profile: Profile, results: dict[str, Any], numbers: Numbers) ->
     """The robust space's rows (M-width, volume, largest K at the rendered (M, B)) and its sentence."""
     sec = renderable_section(profile)
     robust, label = results["renderable_robust"], results["renderable_robust_label"]
-    w = robust_m_width(RenderableRequest.of(profile, robust=REPORT_ROBUST))
+    w = robust_m_width(RenderableRequest.of(profile, robust=report_robust_kind(profile)))
     rows = [_row(numbers, "renderable.robust.m_min", f"robust M-width, lowest mass ({label})", w.m_min, "kg"),
             _row(numbers, "renderable.robust.m_max", f"robust M-width, highest mass ({label})", w.m_max, "kg"),
             _row(numbers, "renderable.robust.m_width", f"robust M-width ({label})", w.width, "kg"),
@@ -85,7 +98,7 @@ def renderable_part(profile: Profile) -> Part:
         return Part()
     sec = renderable_section(profile)
     reason = robust_box_reason(profile)
-    results = renderable_results(profile, REPORT_ROBUST if reason is None else "off")
+    results = renderable_results(profile, report_robust_kind(profile))
     study = results["renderable_study"]
     w, sp = study.width, study.space
     numbers: Numbers = {}
