@@ -34,6 +34,7 @@ import os
 import sys
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 __all__ = ["main"]
 
@@ -88,6 +89,24 @@ def _parser() -> argparse.ArgumentParser:
     bench.add_argument("--quick", action="store_true", help="a crash check of every benchmark (about 30 s); writes nothing")
     bench.add_argument("--only", metavar="TEXT", help="only benchmark modules whose name contains TEXT")
     bench.add_argument("--write", action="store_true", help="write BENCHMARKS.md even with --quick")
+    _add_export_parser(sub)
+    _add_report_parser(sub)
+    from app.cli_identify import add_identify_parser
+
+    add_identify_parser(sub)
+    from app.cli_space import add_space_parser
+
+    add_space_parser(sub)
+    from app.cli_workspace import add_workspace_parser
+
+    add_workspace_parser(sub)
+    gui = sub.add_parser("gui", help="open the GUI (the default)")
+    gui.add_argument("profile", metavar="PROFILE", nargs="?", help="profile JSON file (default: HBFD)")
+    return parser
+
+
+def _add_export_parser(sub: argparse._SubParsersAction) -> None:
+    """``zwidth export-plot``'s arguments."""
     export = sub.add_parser("export-plot", help="write one plot as PNG, SVG or CSV (headless)",
                             description="Write one of the app's plots of a profile; the format comes from the "
                             "extension of -o. transparency/robustness/step need a 'wall' section, map and "
@@ -108,6 +127,10 @@ def _parser() -> argparse.ArgumentParser:
                         "the profile needs identified intervals that bound a box)")
     export.add_argument("--samples", type=int, metavar="N",
                         help=f"devices drawn from the box with --robust samples (default {ROBUST_SAMPLES})")
+
+
+def _add_report_parser(sub: argparse._SubParsersAction) -> None:
+    """``zwidth report``'s arguments."""
     report = sub.add_parser("report", help="write the design report as PDF or HTML (headless)",
                             description="Write the design report of a profile; the format comes from the "
                             "extension of -o (.pdf or .html).")
@@ -117,18 +140,6 @@ def _parser() -> argparse.ArgumentParser:
     report.add_argument("--page-size", choices=("a4", "letter"), default="a4", help="PDF page size (default a4)")
     report.add_argument("--no-sampled", action="store_true",
                         help="leave out the sampled-data stability map and the scenario simulation")
-    from app.cli_identify import add_identify_parser
-
-    add_identify_parser(sub)
-    from app.cli_space import add_space_parser
-
-    add_space_parser(sub)
-    from app.cli_workspace import add_workspace_parser
-
-    add_workspace_parser(sub)
-    gui = sub.add_parser("gui", help="open the GUI (the default)")
-    gui.add_argument("profile", metavar="PROFILE", nargs="?", help="profile JSON file (default: HBFD)")
-    return parser
 
 
 def _default_profile() -> Path:
@@ -286,21 +297,22 @@ def _export_usage(args: argparse.Namespace, profile=None) -> str | None:
     return None if reason is None else f"--robust {args.robust}: no robust space: {reason}"
 
 
-def _export_plot(args: argparse.Namespace) -> int:
-    fmt = Path(args.output).suffix.lower().lstrip(".")
+def _export_profile(args: argparse.Namespace) -> tuple[Any, int | None]:
+    """The profile ``export-plot`` draws (the sections its plot needs, defaults, trials), or
+    ``(None, exit code)`` after a message."""
     problem = _export_usage(args)
     if problem is not None:
-        return _usage("export-plot", problem)
+        return None, _usage("export-plot", problem)
     code = _clash("export-plot", args)
     if code is not None:
-        return code
+        return None, code
     profile, code = _load(args.profile)
     if profile is None:
-        return code
+        return None, code
     section = PLOT_SECTIONS.get(args.plot)
     if section and getattr(profile, section) is None:
-        return _error(f"{args.profile}: $.{section}: the '{args.plot}' plot needs this section, which the "
-                      "profile does not have")
+        return None, _error(f"{args.profile}: $.{section}: the '{args.plot}' plot needs this section, which the "
+                            "profile does not have")
     if args.plot in DEFAULT_SECTION_PLOTS and profile.controller is None:
         from analysis.profiles import ControllerSection
 
@@ -312,13 +324,21 @@ def _export_plot(args: argparse.Namespace) -> int:
         profile = profile if getattr(profile, name) is not None else profile.replace(**{name: cls()})
     profile, code = _with_trials(profile, args.profile, check=args.plot in TRIALS_PLOTS)
     if profile is None:
-        return code
+        return None, code
     code = _clash("export-plot", args, profile)
     if code is not None:
-        return code
+        return None, code
     problem = _export_usage(args, profile)
     if problem is not None:
-        return _usage("export-plot", problem)
+        return None, _usage("export-plot", problem)
+    return profile, None
+
+
+def _export_plot(args: argparse.Namespace) -> int:
+    fmt = Path(args.output).suffix.lower().lstrip(".")
+    profile, code = _export_profile(args)
+    if profile is None:
+        return code
     _headless()
     from analysis.errors import ValidationError
     from analysis.sampled.batch import DeviceFailed

@@ -197,6 +197,22 @@ def _pencils(devices: list[RigidCartesianDevice], shapes: np.ndarray, damping: f
     return np.concatenate(P0s), np.concatenate(P1s)
 
 
+def _zwidth_layer(devices: list, points: list, normal: np.ndarray, zwidth_b: object, delay_samples: int,
+                  grasp: Grasp, velocity_filter: VelocityFilter | None, k_range: tuple[float, float],
+                  step: object, cancelled: Cancelled | None) -> tuple[np.ndarray, np.ndarray]:
+    """The 1-DOF Z-width area along each reachable point's worst normal (``step(n)`` after the n-th
+    point, ``cancelled`` polled before each) and the B grid of the regions."""
+    term = None if grasp.hands_off else Termination(grasp, god_object_wall())
+    area, bz = np.full(normal.shape[:2], math.nan), None
+    for n, (dev, (j, i)) in enumerate(zip(devices, points), start=1):
+        check_cancelled(cancelled)
+        region = zwidth_region(normal_device(dev, normal[j, i]), zwidth_b, delay_samples, velocity_filter,
+                               termination=term, k_range=k_range, passive=False)
+        area[j, i], bz = region.area_linear, region.b
+        step(n)
+    return area, bz
+
+
 @none_if_cancelled
 def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, delay_samples: int = 1, *,
                   sample_time: float = 1e-3, grasp: Grasp = HANDS_OFF, velocity_filter: VelocityFilter | None = None,
@@ -299,19 +315,11 @@ def workspace_map(linkage: FiveBar, x: object, y: object, damping: float = 0.0, 
     best_k, best_n = (refined.stiffness, refined.normal) if refined.stiffness < k_worst[j, i] else \
         (float(k_worst[j, i]), normal[j, i])
     minimum = WorkspaceMinimum(stiffness=float(best_k), position=np.array([xs[i], ys[j]]), normal=np.asarray(best_n))
-    done = ys.size + 2
-    report_progress(progress, done, total)
+    report_progress(progress, ys.size + 2, total)
     area, bz = None, None
     if zwidth_b is not None:
-        term = None if grasp.hands_off else Termination(grasp, god_object_wall())
-        area = np.full(shape, math.nan)
-        for dev, (j, i) in zip(devices, points):
-            check_cancelled(cancelled)
-            region = zwidth_region(normal_device(dev, normal[j, i]), zwidth_b, delay_samples, velocity_filter,
-                                   termination=term, k_range=k_range, passive=False)
-            area[j, i], bz = region.area_linear, region.b
-            done += 1
-            report_progress(progress, done, total)
+        area, bz = _zwidth_layer(devices, points, normal, zwidth_b, delay_samples, grasp, velocity_filter, k_range,
+                                 lambda n: report_progress(progress, ys.size + 2 + n, total), cancelled)
         report_progress(progress, total, total)  # the unreachable points have no area to compute
     return WorkspaceMap(x=xs, y=ys, reachable=reachable, k_max=k_iso, worst_stiffness=k_worst, worst_normal=normal,
                         minimum=minimum, directions=D, zwidth_area=area, zwidth_b=bz)
