@@ -40,18 +40,25 @@ def _build(name: str, path: str, folder: str) -> BuiltReport:
 
     profile = load_profile(path)
     seen: list[Any] = []
+    calls: list[tuple[Any, Any]] = []
     gather = content_module.gather
 
     def recorded(*args: Any, **kwargs: Any) -> Any:  # the content the report is made of, not a third gather
+        calls.append((args, kwargs))
         seen.append(gather(*args, **kwargs))
         return seen[-1]
+
+    def again(*args: Any, **kwargs: Any) -> Any:  # the HTML's gather: the same call, so the same content
+        assert (args, kwargs) == calls[0], "the HTML report gathers other content than the PDF"
+        return seen[0]
 
     with tempfile.TemporaryDirectory(dir=folder) as tmp:
         pdf, page = f"{tmp}/{name}.pdf", f"{tmp}/{name}.html"
         with mock.patch.object(content_module, "gather", recorded):
             info = build_report(profile, pdf, source=str(path))
         assert len(seen) == 1, "build_report no longer gathers through app.report.content.gather"
-        html_info = build_report(profile, page, source=str(path))
+        with mock.patch.object(content_module, "gather", again):  # gather is a pure function of its call
+            html_info = build_report(profile, page, source=str(path))
         assert html_info["format"] == "html"
         with open(pdf, "rb") as f:
             data = f.read()
