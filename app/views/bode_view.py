@@ -233,6 +233,9 @@ class ParameterTable(_Table):
         header = self.horizontalHeader()
         header.setStretchLastSection(False)
         header.setSectionResizeMode(QHeaderView.ResizeMode.Interactive)
+        header.setTextElideMode(Qt.TextElideMode.ElideRight)  # a narrowed number column says "95 % l…", not "% l"
+        for c, name in enumerate(PARAMETER_COLUMNS):
+            self.horizontalHeaderItem(c).setToolTip(name)
         header.setMinimumSectionSize(self.fontMetrics().horizontalAdvance("0…") + 8)
 
     def fit_columns(self) -> None:

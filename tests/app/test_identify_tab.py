@@ -193,7 +193,7 @@ def test_parameter_tables_show_symbols_units_and_whole_columns(qtbot):
     from analysis.identify import parameter_keys
     from analysis.study.quantities import format_number
     from app.panels.identify_panel import IdentifyPanel
-    from app.views.bode_view import ParameterTable
+    from app.views.bode_view import PARAMETER_COLUMNS, ParameterTable
 
     keys = parameter_keys(4)
     params = [SimpleNamespace(key=k, value=9.41192e-9 * (i + 1), std_error=1.234567e-10, low=-2.5e-9,
@@ -218,6 +218,14 @@ def test_parameter_tables_show_symbols_units_and_whole_columns(qtbot):
     assert table.textElideMode() == Qt.TextElideMode.ElideRight and not table.wordWrap()
     value = table.item(1, 2)
     assert value.toolTip() == value.text()  # an elided number's whole text
+    # at 1280×720 the table is 280 px wide: a narrowed column's title elides ("9…", not a clipped "% l")
+    # and keeps its whole name in the tooltip
+    table.resize(280, 300)
+    assert header.textElideMode() == Qt.TextElideMode.ElideRight
+    assert [table.horizontalHeaderItem(c).toolTip() for c in range(table.columnCount())] == list(PARAMETER_COLUMNS)
+    narrowed = [c for c in range(table.columnCount())
+                if header.sectionSize(c) < header.fontMetrics().horizontalAdvance(PARAMETER_COLUMNS[c])]
+    assert narrowed  # the case the elision is for
 
     panel = IdentifyPanel(0.001)
     qtbot.addWidget(panel)
