@@ -12,6 +12,7 @@ from PySide6.QtGui import QImage
 from analysis.multidof import workspace_map
 from analysis.profiles import MultiDofSection, bundled_profiles, load_profile, save_profile
 from analysis.study import WorkspaceRequest, workspace_point
+from analysis.study.workspace import K_RANGE
 from app.report.content import gather
 from cli_runner import run_cli
 
@@ -44,7 +45,7 @@ def test_workspace_writes_the_map_whose_minimum_is_the_analysis(capfd, profile_f
     header, rows = _rows(out)
     assert header[:5] == ["x [m]", "y [m]", "reachable [-]", "k_isotropic [N/m]", "k_worst [N/m]"]
     req = WorkspaceRequest.of(load_profile(profile_file))
-    m = workspace_map(req.linkage, req.x, req.y, req.damping, req.delay_samples, sample_time=req.sample_time)
+    m = workspace_map(req.linkage, req.x, req.y, req.damping, req.delay_samples, sample_time=req.sample_time, k_range=K_RANGE)
     assert len(rows) == m.x.size * m.y.size
     worst = np.array([float(r[4]) if r[4] else math.nan for r in rows]).reshape(m.y.size, m.x.size)
     np.testing.assert_array_equal(worst, m.worst_stiffness)

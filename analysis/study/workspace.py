@@ -47,11 +47,15 @@ from analysis.study.displays import profile_filter
 from analysis.study.requests import delays
 from analysis.transparency.five_bar import FiveBar
 
-__all__ = ["MAP_BANDS", "HandleRequest", "WorkspacePoint", "WorkspaceRequest", "handle_edits", "inertia_ellipse",
+__all__ = ["MAP_BANDS", "K_RANGE", "HandleRequest", "WorkspacePoint", "WorkspaceRequest", "handle_edits", "inertia_ellipse",
            "join_bands", "multidof_section", "polar_curve", "workspace_point", "workspace_study"]
 
 #: The map is computed in at most this many bands of grid rows (one progress step each).
 MAP_BANDS = 8
+#: The wall stiffnesses the workspace scans [N/m], from 1 µN/m: a five-bar with little joint damping
+#: renders only walls of a few mN/m near the edge of its workspace (the Colgate & Brown limit 2b/T of
+#: its weakest direction), which the analysis's default range (1 N/m and up) reported as 0 N/m.
+K_RANGE = (1e-6, 1e9)
 
 
 def multidof_section(profile: Profile) -> MultiDofSection:
@@ -285,7 +289,7 @@ def workspace_study(request: WorkspaceRequest | Profile, *, progress: Progress |
         check_cancelled(cancelled)
         if _reaches(req.linkage, x, ys, req.sample_time):
             band = workspace_map(req.linkage, x, ys, req.damping, req.delay_samples, sample_time=req.sample_time,
-                                 velocity_filter=req.velocity_filter, cancelled=cancelled)
+                                 velocity_filter=req.velocity_filter, k_range=K_RANGE, cancelled=cancelled)
             if band is None:  # cancelled inside the band
                 raise OperationCancelled("the workspace map was cancelled")
             bands.append(band)
@@ -362,7 +366,7 @@ def workspace_point(request: HandleRequest | Profile) -> WorkspacePoint:
     req = request if isinstance(request, HandleRequest) else HandleRequest.of(request)
     p = np.asarray(req.position, float)
     dev = five_bar_device(req.linkage, p, req.sample_time)
-    loop = dict(velocity_filter=req.velocity_filter)
+    loop = dict(velocity_filter=req.velocity_filter, k_range=K_RANGE)
     worst = worst_normal(dev, req.damping, req.delay_samples, directions=DEFAULT_DIRECTIONS[2], **loop)
     theta = np.arctan2(worst.directions[:, 1], worst.directions[:, 0])
     iso = critical_wall_stiffness(dev, req.damping, req.delay_samples, None, **loop)

@@ -10,6 +10,7 @@ from PySide6.QtCore import QPoint, QPointF, Qt
 from analysis.multidof import workspace_map
 from analysis.profiles import MultiDofSection
 from analysis.study import WorkspaceRequest, format_number
+from analysis.study.workspace import K_RANGE
 from app.core.nodes_workspace import WORKSPACE_MAP_NODE, WORKSPACE_POINT_NODE
 from app.tabs.workspace_tab import WorkspaceTab
 
@@ -46,7 +47,7 @@ def test_the_tab_is_built_and_computed_only_when_shown(wwin, qtbot):
 def test_the_worst_point_is_workspace_maps_minimum(wwin, qtbot):
     tab = show(wwin, qtbot)
     req = WorkspaceRequest.of(wwin.model.profile)
-    m = workspace_map(req.linkage, req.x, req.y, req.damping, req.delay_samples, sample_time=req.sample_time)
+    m = workspace_map(req.linkage, req.x, req.y, req.damping, req.delay_samples, sample_time=req.sample_time, k_range=K_RANGE)
     shown = tab.map_view.map
     np.testing.assert_array_equal(shown.minimum.position, m.minimum.position)
     assert shown.minimum.stiffness == m.minimum.stiffness
