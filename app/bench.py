@@ -98,7 +98,7 @@ def merge_tables(text: str, sections: list[str], run: str, partial: bool = False
 
     A full run replaces the block.  A partial run (``--only``) replaces only the modules it ran
     (``### bench_name`` sections) and keeps every other table, with a line saying which tables
-    are newer."""
+    are newer (an earlier partial run's line keeps the modules not re-run since)."""
     if BEGIN not in text or END not in text:
         text += f"\n{BEGIN}\n{END}\n"
     head, rest = text.split(BEGIN, 1)
@@ -110,7 +110,15 @@ def merge_tables(text: str, sections: list[str], run: str, partial: bool = False
     tables = {q.split("\n", 1)[0][4:].strip(): q.strip() for q in parts if q.startswith("### ")}
     for sec in sections:
         tables[sec.split("\n", 1)[0][4:].strip()] = sec.strip()
-    names = ", ".join(sec.split("\n", 1)[0][4:].strip() for sec in sections)
-    lines = [ln for ln in "".join(intro).strip().splitlines() if not ln.startswith("Partly re-run")]
-    lines.append(f"Partly re-run on {run}: {names}.")
+    ran = [sec.split("\n", 1)[0][4:].strip() for sec in sections]
+    lines = []
+    for ln in "".join(intro).strip().splitlines():
+        if ln.startswith("Partly re-run"):  # an earlier partial run: keep the modules this one did not re-run
+            head_, _, mods = ln.rstrip(".").rpartition(": ")
+            kept = [m for m in mods.split(", ") if m not in ran]
+            if not kept:
+                continue
+            ln = f"{head_}: {', '.join(kept)}."
+        lines.append(ln)
+    lines.append(f"Partly re-run on {run}: {', '.join(ran)}.")
     return f"{head}{BEGIN}\n" + "\n".join(lines) + "\n\n" + "\n\n".join(tables.values()) + f"\n{END}{tail}"

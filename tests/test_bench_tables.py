@@ -36,6 +36,11 @@ def test_partial_run_replaces_only_its_tables():
     assert out.startswith("# Benchmarks\n\nprose kept") and out.rstrip().endswith("after")
     again = merge_tables(out, [new_b], "day 3", partial=True)
     assert again.count("Partly re-run") == 1 and "day 3" in again
+    new_a = "### bench_a\n\n| benchmark | ms |\n|---|---|\n| a | 5 |"
+    both = merge_tables(merge_tables(DOC, [new_a, new_b], "day 2", partial=True), [new_a], "day 3", partial=True)
+    # each table's date stays said: b's day-2 run is kept, a's moves to day 3
+    assert "Partly re-run on day 2: bench_b." in both and "Partly re-run on day 3: bench_a." in both
+    assert both.count("Partly re-run") == 2 and "| a | 5 |" in both and "| b | 3 |" in both
 
 
 def test_full_run_replaces_the_block():
