@@ -51,14 +51,18 @@ def rigid(m: float = 0.5, b: float = 2.0) -> Device:
     return Device(masses=[m], stiffnesses=[], dampings=[], ground_dampings=[b], sensor_element=0, sample_time=T)
 
 
-def hand_polynomial(m: float, b: float, M: float, B: float, K: float, d: int) -> np.ndarray:
-    """The characteristic polynomial of the module docstring (highest power first)."""
+def zoh_coefficients(m: float, b: float) -> tuple[float, float, float]:
+    """The ZOH discretization of the rigid mass-damper: its pole delta and numerator (alpha, beta)."""
     if b > 0:
         delta = math.exp(-b * T / m)
         om = -math.expm1(-b * T / m)
-        alpha, beta = (T - (m / b) * om) / b, ((m / b) * om - T * delta) / b
-    else:
-        delta, alpha, beta = 1.0, T * T / (2 * m), T * T / (2 * m)
+        return delta, (T - (m / b) * om) / b, ((m / b) * om - T * delta) / b
+    return 1.0, T * T / (2 * m), T * T / (2 * m)
+
+
+def hand_polynomial(m: float, b: float, M: float, B: float, K: float, d: int) -> np.ndarray:
+    """The characteristic polynomial of the module docstring (highest power first)."""
+    delta, alpha, beta = zoh_coefficients(m, b)
     lhs = np.polymul(np.r_[1.0, np.zeros(d + 2)], np.polymul([1.0, -1.0], [1.0, -delta]))
     ctrl = K * np.array([1.0, 0, 0]) + (B / T) * np.array([1.0, -1.0, 0]) + (M / T ** 2) * np.array([1.0, -2.0, 1.0])
     return np.polyadd(lhs, np.polymul(ctrl, [alpha, beta]))
@@ -79,12 +83,7 @@ def hand_radii(m: float, b: float, M: float, B: float, K: np.ndarray, d: int) ->
     ``np.roots``, their eigenvalues in one batched call.  A stiffness whose polynomial has a
     trailing zero coefficient (``np.roots`` deflates it) or is 0 takes :func:`hand_radius` itself."""
     K = np.asarray(K, dtype=float)
-    if b > 0:
-        delta = math.exp(-b * T / m)
-        om = -math.expm1(-b * T / m)
-        alpha, beta = (T - (m / b) * om) / b, ((m / b) * om - T * delta) / b
-    else:
-        delta, alpha, beta = 1.0, T * T / (2 * m), T * T / (2 * m)
+    delta, alpha, beta = zoh_coefficients(m, b)
     lhs = np.polymul(np.r_[1.0, np.zeros(d + 2)], np.polymul([1.0, -1.0], [1.0, -delta]))
     ctrl = (K[:, None] * np.array([1.0, 0, 0]) + (B / T) * np.array([1.0, -1.0, 0])
             + (M / T ** 2) * np.array([1.0, -2.0, 1.0]))
