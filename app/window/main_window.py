@@ -29,6 +29,7 @@ from app.tabs import AnalysisTab, AppContext, tab_classes
 from app.views.base import PlotView
 from app.views.verdict import VerdictView
 from app.widgets.task_progress import TaskProgress
+from app.widgets.tab_list_button import TabListButton
 from app.window.design_actions import DesignActions
 from app.window.robust_actions import RobustActions
 from app.window.documents import APP_NAME, Documents, default_profile, dropped_files
@@ -94,6 +95,7 @@ class MainWindow(QMainWindow):
             tab.viewsBuilt.connect(lambda t=tab: self._connect_exports(t))
             self.analysis_tabs.append(tab)
             self.tabs.addTab(tab, cls.title)
+        self.tab_list = TabListButton(self.tabs)  # the tabs behind the bar's scroll arrows at 1280 px
         self.splitter = QSplitter(Qt.Orientation.Horizontal)
         self.splitter.addWidget(self.panel)
         self.splitter.addWidget(self.tabs)
