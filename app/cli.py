@@ -36,6 +36,8 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from app.cli_files import command_error, usage_error
+
 __all__ = ["main"]
 
 SUBCOMMANDS = ("analyze", "design", "gui", "bench", "export-plot", "report", "identify", "space", "workspace")
@@ -148,11 +150,6 @@ def _default_profile() -> Path:
     return resource_path("profiles", "hbfd.json")
 
 
-def _error(message: str) -> int:
-    print(f"zwidth: error: {message}", file=sys.stderr)
-    return 1
-
-
 # -- analyze -------------------------------------------------------------------------------------
 
 
@@ -196,7 +193,7 @@ def _load(profile_path: str | Path):
     try:
         return load_profile(profile_path), None
     except ProfileError as err:
-        return None, _error(str(err))
+        return None, command_error(str(err))
 
 
 def _analyze(profile_path: str | Path, as_json: bool) -> int:
@@ -210,7 +207,7 @@ def _analyze(profile_path: str | Path, as_json: bool) -> int:
     try:
         summary = summarize(profile)
     except ValidationError as err:
-        return _error(f"{profile_path}: {err}")
+        return command_error(f"{profile_path}: {err}")
     print(json.dumps(_jsonable(summary), indent=2, allow_nan=False) if as_json else format_summary(summary))
     return 0
 
@@ -243,14 +240,8 @@ def _with_trials(profile, profile_path: str | Path, check: bool = True):
         try:
             profile_trials(profile)
         except ValidationError as err:
-            return None, _error(f"{profile_path}: $.controller.trials: {err}")
+            return None, command_error(f"{profile_path}: $.controller.trials: {err}")
     return profile, None
-
-
-def _usage(command: str, message: str) -> int:
-    print(f"usage: zwidth {command} ... (see zwidth {command} --help)\nzwidth {command}: error: {message}",
-          file=sys.stderr)
-    return 2
 
 
 def _clash(command: str, args: argparse.Namespace, profile=None) -> int | None:
@@ -261,7 +252,7 @@ def _clash(command: str, args: argparse.Namespace, profile=None) -> int | None:
 
     trials = profile.controller.trials if profile is not None and profile.controller is not None else None
     clash = output_clash(args.output, [("PROFILE", args.profile), ("$.controller.trials", trials)])
-    return None if clash is None else _usage(command, clash)
+    return None if clash is None else usage_error(command, clash)
 
 
 def _headless() -> None:
@@ -302,7 +293,7 @@ def _export_profile(args: argparse.Namespace) -> tuple[Any, int | None]:
     ``(None, exit code)`` after a message."""
     problem = _export_usage(args)
     if problem is not None:
-        return None, _usage("export-plot", problem)
+        return None, usage_error("export-plot", problem)
     code = _clash("export-plot", args)
     if code is not None:
         return None, code
@@ -311,7 +302,7 @@ def _export_profile(args: argparse.Namespace) -> tuple[Any, int | None]:
         return None, code
     section = PLOT_SECTIONS.get(args.plot)
     if section and getattr(profile, section) is None:
-        return None, _error(f"{args.profile}: $.{section}: the '{args.plot}' plot needs this section, which the "
+        return None, command_error(f"{args.profile}: $.{section}: the '{args.plot}' plot needs this section, which the "
                             "profile does not have")
     if args.plot in DEFAULT_SECTION_PLOTS and profile.controller is None:
         from analysis.profiles import ControllerSection
@@ -330,7 +321,7 @@ def _export_profile(args: argparse.Namespace) -> tuple[Any, int | None]:
         return None, code
     problem = _export_usage(args, profile)
     if problem is not None:
-        return None, _usage("export-plot", problem)
+        return None, usage_error("export-plot", problem)
     return profile, None
 
 
@@ -362,7 +353,7 @@ def _export_plot(args: argparse.Namespace) -> int:
             content.results.update(renderable_results(profile, args.robust, args.samples or ROBUST_SAMPLES))
         fig = make_view(content, key)
     except (ValidationError, DeviceFailed) as err:
-        return _error(f"{args.profile}: {err}")
+        return command_error(f"{args.profile}: {err}")
     try:
         if fmt == "png":
             width = args.width or round(FIG_SIZE[0] / 96 * args.dpi)
@@ -372,7 +363,7 @@ def _export_plot(args: argparse.Namespace) -> int:
         else:
             export.export_csv(fig.view, args.output)
     except OSError as err:
-        return _error(str(err))
+        return command_error(str(err))
     return 0
 
 
@@ -380,7 +371,7 @@ def _report(args: argparse.Namespace) -> int:
     from app.report import report_format
 
     if report_format(args.output) is None:
-        return _usage("report", f"-o {args.output}: the extension must be .pdf or .html")
+        return usage_error("report", f"-o {args.output}: the extension must be .pdf or .html")
     code = _clash("report", args)
     if code is not None:
         return code
@@ -404,11 +395,11 @@ def _report(args: argparse.Namespace) -> int:
         build_report(profile, args.output, page_size=args.page_size, source=str(args.profile),
                      sampled=not args.no_sampled)
     except ValidationError as err:
-        return _error(f"{args.profile}: {err}")
+        return command_error(f"{args.profile}: {err}")
     except OSError as err:
         from analysis.profiles.files import unwritable_reason
 
-        return _error(f"cannot write {args.output}: {unwritable_reason(args.output) or err.strerror or err}")
+        return command_error(f"cannot write {args.output}: {unwritable_reason(args.output) or err.strerror or err}")
     return 0
 
 
@@ -424,11 +415,11 @@ def _gui(profile_path: str | Path | None) -> int:
 
     problem = gui_problem()  # before Qt: without a display Qt would abort the process (exit 134)
     if problem is not None:
-        return _error(problem)
+        return command_error(problem)
     try:
         from app.window.main_window import run_gui
     except ImportError as exc:  # usually a missing system library for Qt
-        return _error(f"cannot start the GUI: {exc} (see packaging/system-deps.sh)")
+        return command_error(f"cannot start the GUI: {exc} (see packaging/system-deps.sh)")
     return int(run_gui(str(path)) or 0)
 
 

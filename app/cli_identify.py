@@ -22,15 +22,16 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import os
 import signal
 import sys
 import threading
 import time
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TextIO
+
+from app.cli_files import output_clash
 
 __all__ = ["add_identify_parser", "run_identify", "format_parameters", "output_clash", "FitWatch",
            "PROGRESS_ORDER", "CANCELLED_EXIT"]
@@ -74,30 +75,6 @@ def add_identify_parser(sub: argparse._SubParsersAction) -> None:
                    help="profile JSON to write (never one of the MEASUREMENT files)")
     p.add_argument("--force", action="store_true", help="let -o overwrite the --base profile")
     p.add_argument("--json", action="store_true", help="print the parameter table as JSON")
-
-
-def _same_file(a: str | os.PathLike, b: str | os.PathLike) -> bool:
-    """Whether two paths name the same file: :func:`os.path.samefile` when both exist (hard and
-    symbolic links too), else their resolved absolute paths compared (case-folded where the file
-    system folds case)."""
-    try:
-        if os.path.exists(a) and os.path.exists(b):
-            return os.path.samefile(a, b)
-        return os.path.normcase(os.path.realpath(a)) == os.path.normcase(os.path.realpath(b))
-    except (OSError, TypeError, ValueError):  # an unusable name is reported where it is used
-        return False
-
-
-def output_clash(output: str | os.PathLike, inputs: Iterable[tuple[str, str | os.PathLike | None]],
-                 option: str = "-o", remedy: str = "write the output to another file") -> str | None:
-    """Why ``output`` must not be written, or ``None``: the usage error (exit 2) of every ``zwidth``
-    command when its output file is one of its input files (issue 22: ``identify m.csv -o m.csv``
-    overwrote the measurement).  ``inputs`` are ``(what, path)`` pairs, e.g. ``("MEASUREMENT",
-    "m.csv")`` or ``("--base", "p.json")``; ``None`` paths are skipped; ``remedy`` ends the message."""
-    for what, path in inputs:
-        if path is not None and _same_file(output, path):
-            return f"{option} {os.fspath(output)}: this is the input file {what} {os.fspath(path)}; {remedy}"
-    return None
 
 
 def _fail(message: str, code: int = 1) -> int:

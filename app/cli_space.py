@@ -31,6 +31,8 @@ from pathlib import Path
 
 import numpy as np
 
+from app.cli_files import command_error, table_outputs, usage_error
+
 __all__ = ["add_space_parser", "run_space", "parse_grid", "space_csv", "DEFAULT_GRID_POINTS", "PLOT_SLICES"]
 
 #: points of each default axis
@@ -105,36 +107,13 @@ def space_csv(mass: np.ndarray, damping: np.ndarray, k_max: np.ndarray, by_quali
     return table_csv_text(columns, notes)
 
 
-def _usage(message: str) -> int:
-    print(f"usage: zwidth space ... (see zwidth space --help)\nzwidth space: error: {message}", file=sys.stderr)
-    return 2
-
-
-def _error(message: str) -> int:
-    print(f"zwidth: error: {message}", file=sys.stderr)
-    return 1
-
-
 def _check_args(args: argparse.Namespace) -> tuple[str | None, Path | None]:
     """The usage error of ``args`` (or ``None``) and the plot's path."""
-    from app.cli_identify import output_clash
-
-    if Path(args.output).suffix.lower() != ".csv":
-        return f"-o {args.output}: the extension must be .csv", None
-    plot = Path(args.plot) if args.plot else Path(args.output).with_suffix(".png")
-    if plot.suffix.lower() not in (".png", ".svg"):
-        return f"--plot {plot}: the extension must be .png or .svg", None
     if args.batch is not None and not 1 <= args.batch <= 100_000:
         return "--batch must be between 1 and 100000", None
     if args.workers is not None and args.workers < 1:
         return "--workers must be at least 1", None
-    for out in (args.output, str(plot)):
-        clash = output_clash(out, [("PROFILE", args.profile)])
-        if clash is not None:
-            return clash, None
-    if Path(args.output).resolve() == plot.resolve():
-        return "--plot and -o name the same file", None
-    return None, plot
+    return table_outputs(args)
 
 
 def _devices(profile, args: argparse.Namespace):
@@ -236,20 +215,20 @@ def run_space(args: argparse.Namespace) -> int:
 
     problem, plot = _check_args(args)
     if problem is not None:
-        return _usage(problem)
+        return usage_error("space", problem)
     try:
         mass = None if args.mass is None else parse_grid(args.mass, "mass")
         damping = None if args.damping is None else parse_grid(args.damping, "damping")
     except ValueError as err:
-        return _usage(str(err))
+        return usage_error("space", str(err))
     if args.delay is not None and args.delay < 0:
-        return _usage("--delay must be at least 0")
+        return usage_error("space", "--delay must be at least 0")
     from analysis.profiles.io import ProfileError, load_profile
 
     try:
         profile = load_profile(args.profile)
     except ProfileError as err:
-        return _error(str(err))
+        return command_error(str(err))
     from analysis.study import RenderableRequest
 
     try:
@@ -260,15 +239,15 @@ def run_space(args: argparse.Namespace) -> int:
         damping = np.array(request.damping) if damping is None else damping
         devices = _devices(profile, args)
         if isinstance(devices, str):
-            return _error(f"{args.profile}: {devices}")
+            return command_error(f"{args.profile}: {devices}")
         space, binding, why = _compute(request, args, devices, qualities, mass, damping)
     except (ValidationError, DeviceFailed) as err:
-        return _error(f"{args.profile}: {err}")
+        return command_error(f"{args.profile}: {err}")
     except KeyboardInterrupt:
         print("zwidth space: cancelled, nothing written", file=sys.stderr)
         return 130
     if why is not None:
-        return _error(why)
+        return command_error(why)
     n = 1 if devices is None else len(devices)
     delay = request.delay_samples if args.delay is None else args.delay
     notes = [f"zwidth space of {args.profile}: qualities {', '.join(space.qualities)}, delay {delay} samples",
@@ -282,6 +261,6 @@ def run_space(args: argparse.Namespace) -> int:
         atomic_write(args.output, text.encode("utf-8"))
         write_plot(plot, space.mass, space.damping, space.k_max, title)
     except OSError as err:
-        return _error(str(err))
+        return command_error(str(err))
     print(f"wrote {args.output} and {plot}")
     return 0

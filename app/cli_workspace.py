@@ -23,6 +23,8 @@ import argparse
 import sys
 from pathlib import Path
 
+from app.cli_files import command_error, table_outputs, usage_error
+
 __all__ = ["add_workspace_parser", "run_workspace", "workspace_csv"]
 
 
@@ -54,35 +56,6 @@ def workspace_csv(m: object, notes: list[str]) -> str:
                            (Axis("n_x", "-"), n[..., 0]), (Axis("n_y", "-"), n[..., 1])], notes)
 
 
-def _usage(message: str) -> int:
-    print(f"usage: zwidth workspace ... (see zwidth workspace --help)\nzwidth workspace: error: {message}",
-          file=sys.stderr)
-    return 2
-
-
-def _error(message: str) -> int:
-    print(f"zwidth: error: {message}", file=sys.stderr)
-    return 1
-
-
-def _check_args(args: argparse.Namespace) -> tuple[str | None, Path | None]:
-    """The usage error of ``args`` (or ``None``) and the plot's path."""
-    from app.cli_identify import output_clash
-
-    if Path(args.output).suffix.lower() != ".csv":
-        return f"-o {args.output}: the extension must be .csv", None
-    plot = Path(args.plot) if args.plot else Path(args.output).with_suffix(".png")
-    if plot.suffix.lower() not in (".png", ".svg"):
-        return f"--plot {plot}: the extension must be .png or .svg", None
-    for out in (args.output, str(plot)):
-        clash = output_clash(out, [("PROFILE", args.profile)])
-        if clash is not None:
-            return clash, None
-    if Path(args.output).resolve() == plot.resolve():
-        return "--plot and -o name the same file", None
-    return None, plot
-
-
 def _progress(done: int, total: int) -> None:
     print(f"workspace: {done}/{total} bands of the grid", file=sys.stderr, flush=True)
 
@@ -112,13 +85,13 @@ def run_workspace(args: argparse.Namespace) -> int:
     from analysis.profiles.io import ProfileError, load_profile
     from analysis.study import format_number, multidof_section, workspace_point, workspace_study
 
-    problem, plot = _check_args(args)
+    problem, plot = table_outputs(args)
     if problem is not None:
-        return _usage(problem)
+        return usage_error("workspace", problem)
     try:
         profile = load_profile(args.profile)
     except ProfileError as err:
-        return _error(str(err))
+        return command_error(str(err))
     if profile.multidof is None:
         print(f"zwidth workspace: {args.profile} has no multidof section: the default five-bar and grid",
               file=sys.stderr)
@@ -126,7 +99,7 @@ def run_workspace(args: argparse.Namespace) -> int:
     try:
         m = workspace_study(profile, progress=_progress)
     except ValidationError as err:
-        return _error(f"{args.profile}: $.multidof.map: {err}")
+        return command_error(f"{args.profile}: $.multidof.map: {err}")
     except KeyboardInterrupt:
         print("zwidth workspace: cancelled, nothing written", file=sys.stderr)
         return 130
@@ -145,7 +118,7 @@ def run_workspace(args: argparse.Namespace) -> int:
         atomic_write(args.output, workspace_csv(m, notes))
         write_plot(plot, m, point, (sec.handle_x, sec.handle_y))
     except OSError as err:
-        return _error(str(err))
+        return command_error(str(err))
     print(f"design bound {format_number(b.stiffness)} N/m at ({format_number(b.position[0])}, "
           f"{format_number(b.position[1])}) m; wrote {args.output} and {plot}")
     return 0
