@@ -91,12 +91,7 @@ class WorkspacePanel(QWidget):
         return self.write_many({name: value}, name.replace("_", " "))
 
     def write_many(self, changes: dict[str, object], label: str) -> str | None:
-        reason = self.section.write_many(changes, label)
-        self.error.setText(f"refused: {reason}" if reason else "")
-        self.error.setVisible(bool(reason))
-        if reason:
-            self.refresh()
-        return reason
+        return self.section.write_shown(changes, label, self.error, self.refresh)
 
     @Slot()
     def _on_kind(self) -> None:

@@ -12,6 +12,7 @@ from typing import Any
 
 from analysis import ValidationError
 from analysis.profiles.model import Profile
+from PySide6.QtWidgets import QLabel
 
 from app.core.commands import Editor, describe_error
 from app.core.model import ProfileModel
@@ -51,6 +52,17 @@ class SectionBinding:
         if self.model.get(self.section) is not None and new == self.model.get(self.section):
             return None
         return self.editor.edit_many({self.section: new}, f"Set {self.title} {label}", drag)
+
+    def write_shown(self, changes: dict[str, object], label: str, error: QLabel,
+                    refresh: Callable[[], None]) -> str | None:
+        """:meth:`write_many`, its refusal shown on the panel's ``error`` label (hidden when
+        accepted) and the panel's fields ``refresh``-ed back to the section after a refusal."""
+        reason = self.write_many(changes, label)
+        error.setText(f"refused: {reason}" if reason else "")
+        error.setVisible(bool(reason))
+        if reason:
+            refresh()
+        return reason
 
     def writer(self, name: str, label: str) -> Callable[..., str | None]:
         """For LogSliderField (``value, drag``) and the choice fields (``value``)."""
