@@ -2,10 +2,12 @@
 
 The tab keeps the graph key of a cancelled or failed node (its result is *held*: the last good one
 stays on the plot and nothing restarts it until the user says so) and the failure message.
-Used by the Sampled-data and Z-width tabs.
+Used by the Sampled-data, Z-width, Renderable-space and Workspace tabs.
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 __all__ = ["AsyncJobs"]
 
@@ -38,3 +40,19 @@ class AsyncJobs:
             self.refresh()
         else:
             self.stale = True
+
+    def pull(self, name: str) -> Any:
+        """Request ``name`` unless the user cancelled it (or it failed) for the same inputs: then its
+        held result; new inputs release the hold."""
+        g = self.ctx.graph
+        held = self._held.get(name)
+        if held is not None:
+            if held == g.key_of(name):
+                return g.result(name)
+            del self._held[name]
+            self._errors.pop(name, None)
+        return g.request(name)
+
+    def busy(self, name: str) -> bool:
+        """Whether ``name`` is computing for the current inputs (not fresh, and not held)."""
+        return not self.ctx.graph.is_fresh(name) and name not in self._held

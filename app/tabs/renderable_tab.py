@@ -181,17 +181,6 @@ class RenderableTab(AsyncJobs, AnalysisTab):
         if i >= 0:
             self.quality.setCurrentIndex(i)
 
-    # -- pulling ------------------------------------------------------------------------------------------
-    def _pull(self, name: str) -> Any:
-        g = self.ctx.graph
-        held = self._held.get(name)
-        if held is not None:
-            if held == g.key_of(name):
-                return g.result(name)
-            del self._held[name]
-            self._errors.pop(name, None)
-        return g.request(name)
-
     def _sync_qualities(self, qualities: tuple[str, ...]) -> None:
         keys = ("all", *qualities) if len(qualities) > 1 else qualities
         if tuple(self.quality.itemData(i) for i in range(self.quality.count())) == keys:
@@ -214,12 +203,11 @@ class RenderableTab(AsyncJobs, AnalysisTab):
         return reason is None and self.ctx.graph.params(ROBUST_NODE)["robust"] != "off"
 
     def update_views(self) -> None:
-        g = self.ctx.graph
-        study = self._pull(RENDERABLE_NODE)
-        busy = not g.is_fresh(RENDERABLE_NODE) and RENDERABLE_NODE not in self._held
+        study = self.pull(RENDERABLE_NODE)
+        busy = self.busy(RENDERABLE_NODE)
         robust_on = self._robust_on()
-        robust = self._pull(ROBUST_NODE) if robust_on else None
-        robust_busy = robust_on and not g.is_fresh(ROBUST_NODE) and ROBUST_NODE not in self._held
+        robust = self.pull(ROBUST_NODE) if robust_on else None
+        robust_busy = robust_on and self.busy(ROBUST_NODE)
         if not robust_on:
             self.progress[ROBUST_NODE].hide()
         self._draw(study, robust)

@@ -201,21 +201,6 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
         else:
             self.stale = True
 
-    # -- pulling ---------------------------------------------------------------------------------------
-    def _pull(self, name: str) -> Any:
-        """Request ``name`` unless the user cancelled it (or it failed) for the same inputs."""
-        g = self.ctx.graph
-        held = self._held.get(name)
-        if held is not None:
-            if held == g.key_of(name):
-                return g.result(name)
-            del self._held[name]
-            self._errors.pop(name, None)
-        return g.request(name)
-
-    def _busy(self, name: str) -> bool:
-        return not self.ctx.graph.is_fresh(name) and name not in self._held
-
     def _busy_text(self, name: str) -> str:
         """"updating…" while computing; while a slider drag holds it back, that it catches up."""
         return "updating after the drag…" if name in self.ctx.graph.waiting() else ""
@@ -227,7 +212,7 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
         settings = self.map_panel.settings(p.display)
         g.set_params(MAP_NODE, **settings)
         g.set_params(POINT_NODE, x=settings["x"], y=settings["y"])
-        m, chart, limit, sim = (self._pull(name) for name in ASYNC_NODES)
+        m, chart, limit, sim = (self.pull(name) for name in ASYNC_NODES)
         self._hold_ranges(g.interactive)  # still axes during a drag: only the markers repaint
         # the two-port chart behind the exact limit: not restarted on every step of a drag
         bound_chart = g.result("design_chart") if g.holding else g.request("design_chart")
@@ -253,7 +238,7 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
             self.map_view.update_point(px, py, None if rho is None or math.isnan(rho) else is_stable(rho))
         elif m is not None and self._changed("map", None):
             self.map_view.update_map(None)
-        self.map_view.set_busy(self._busy(MAP_NODE), self._busy_text(MAP_NODE))
+        self.map_view.set_busy(self.busy(MAP_NODE), self._busy_text(MAP_NODE))
         if MAP_NODE in self._errors:
             self.map_view.set_warning([self._errors[MAP_NODE]])
 
@@ -267,7 +252,7 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
         if self._changed("exact", chart, kind):
             self.exact_view.update_exact(chart, kind)
         self.exact_view.update_point(*kind.chart_point(p), g.get(g.stability_name).stable)
-        self.exact_view.set_busy(self._busy(EXACT_NODE) or not g.is_fresh("design_chart"), self._busy_text(EXACT_NODE))
+        self.exact_view.set_busy(self.busy(EXACT_NODE) or not g.is_fresh("design_chart"), self._busy_text(EXACT_NODE))
         if EXACT_NODE in self._errors:
             self.exact_view.set_warning([self._errors[EXACT_NODE]])
 
@@ -282,7 +267,7 @@ class SampledTab(HeldPlots, AsyncJobs, AnalysisTab):
         if SIM_NODE in self._errors:
             self.time_view.verdict.setText(for_theme(f"<span style='color:#c92a2a'>{self._errors[SIM_NODE]}</span>",
                                                      self.dark))
-        self.time_view.set_busy(self._busy(SIM_NODE), self._busy_text(SIM_NODE))
+        self.time_view.set_busy(self.busy(SIM_NODE), self._busy_text(SIM_NODE))
 
     # -- worker reports -------------------------------------------------------------------------------
     @Slot(str)

@@ -119,20 +119,10 @@ class WorkspaceTab(AsyncJobs, AnalysisTab):
         """Move the handle to ``(x, y)`` [m]: one undo step; returns the refusal (out of reach), if any."""
         return self.panel.write_many(handle_edits(x, y), "handle position")
 
-    def _pull(self, name: str) -> Any:
-        g = self.ctx.graph
-        held = self._held.get(name)
-        if held is not None:
-            if held == g.key_of(name):
-                return g.result(name)
-            del self._held[name]
-            self._errors.pop(name, None)
-        return g.request(name)
-
     def update_views(self) -> None:
         g = self.ctx.graph
-        m = self._pull(WORKSPACE_MAP_NODE)
-        busy = not g.is_fresh(WORKSPACE_MAP_NODE) and WORKSPACE_MAP_NODE not in self._held
+        m = self.pull(WORKSPACE_MAP_NODE)
+        busy = self.busy(WORKSPACE_MAP_NODE)
         point = g.get(WORKSPACE_POINT_NODE)
         sec = multidof_section(self.ctx.model.profile)
         if self.map_view.map is not m:

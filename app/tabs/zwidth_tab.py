@@ -246,20 +246,6 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
     def _on_b_range(self) -> None:
         self.set_b_range(self.b_min.value(), self.b_max.value())
 
-    # -- pulling ------------------------------------------------------------------------------------------
-    def _pull(self, name: str) -> Any:
-        g = self.ctx.graph
-        held = self._held.get(name)
-        if held is not None:
-            if held == g.key_of(name):
-                return g.result(name)
-            del self._held[name]
-            self._errors.pop(name, None)
-        return g.request(name)
-
-    def _busy(self, name: str) -> bool:
-        return not self.ctx.graph.is_fresh(name) and name not in self._held
-
     def _trials(self) -> Any:
         try:
             return self.ctx.graph.get(TRIALS_NODE)
@@ -283,18 +269,18 @@ class ZWidthTab(AsyncJobs, AnalysisTab):
         self.force_noise.setEnabled(on)
         self._errors.pop(TRIALS_NODE, None)
         self._trials_error = None
-        region, opt = self._pull(REGION_NODE), self._pull(OPTIMUM_NODE)
+        region, opt = self.pull(REGION_NODE), self.pull(OPTIMUM_NODE)
         trials = self._trials()
         study = trial_score(region, trials) if region is not None else None
         if self.region_view.region is not region or self.region_view.trials is not trials:
             self.region_view.update_region(region, trials, None if study is None else study.score)
         b, k = region_wall(p)
         self.region_view.update_point(b, k, None if region is None else region.stable(b, k))
-        self.region_view.set_busy(self._busy(REGION_NODE))
+        self.region_view.set_busy(self.busy(REGION_NODE))
         if self.optimum_view.optimum is not opt:
             self.optimum_view.update_optimum(opt)
         self.optimum_view.update_filter(sec.velocity_filter)
-        self.optimum_view.set_busy(self._busy(OPTIMUM_NODE))
+        self.optimum_view.set_busy(self.busy(OPTIMUM_NODE))
         self._show_offer(opt)
         self._show_trials(trials, study, self._trials_error)
         self.region_view.set_errors([e for n, e in self._errors.items() if n != OPTIMUM_NODE])
