@@ -26,6 +26,9 @@ __all__ = ["TaskRunner", "Job"]
 
 Job = Callable[[Progress, Cancelled], Any]
 
+#: The least time between two progress reports of a job that reach the GUI [s] (20 per second).
+PROGRESS_INTERVAL = 0.05
+
 
 class _Relay(QObject):
     """Carries a job's reports from the worker thread to the GUI thread (queued signals)."""
@@ -117,9 +120,17 @@ class _Runnable(QRunnable):
     def _run(self) -> None:
         name, gen = self._name, self._gen
 
+        last = [-PROGRESS_INTERVAL]
+
         def progress(done: int, total: int) -> None:
-            if not self._stop.is_set():
-                self._relay.progress.emit(name, gen, int(done), int(total))
+            # at most one report per PROGRESS_INTERVAL (the first and the last always): a progress
+            # bar repaints on every new value, and a job reporting per row would spend the GUI
+            # thread's time on repaints nobody can read
+            now = time.monotonic()
+            if self._stop.is_set() or (now - last[0] < PROGRESS_INTERVAL and 0 < done < total):
+                return
+            last[0] = now
+            self._relay.progress.emit(name, gen, int(done), int(total))
 
         try:
             with self._gil:

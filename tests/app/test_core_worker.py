@@ -6,6 +6,7 @@ Deterministic: the jobs wait on events the test sets, and the test waits for sig
 from __future__ import annotations
 
 import threading
+import time
 
 import pytest
 
@@ -103,3 +104,27 @@ def test_a_failing_job_reports_its_error(runner, qtbot):
         runner.submit("bad", job)
     assert seen["failed"] == [("bad", "ValueError: no such design")]
     assert seen["finished"] == [] and not runner.is_running("bad")
+
+
+def test_progress_reaches_the_gui_at_most_twenty_times_a_second_with_its_first_and_last(runner, qtbot):
+    """A job reporting per step (10 000 steps) sends the GUI its first report, its last and at most
+    one every PROGRESS_INTERVAL between them: a progress bar repaints on every new value."""
+    from app.core.worker import PROGRESS_INTERVAL
+
+    seen = record(runner)
+    elapsed: list[float] = []
+
+    def job(progress, cancelled):
+        start = time.monotonic()
+        for i in range(10_001):
+            progress(i, 10_000)
+        elapsed.append(time.monotonic() - start)
+        return "done"
+
+    with qtbot.waitSignal(runner.finished, timeout=30000):
+        runner.submit("rows", job)
+    qtbot.waitUntil(lambda: seen["progress"] and seen["progress"][-1][1] == 10_000, timeout=30000)
+    done = [d for _n, d, _t in seen["progress"]]
+    assert done[0] == 0 and done[-1] == 10_000 and done == sorted(done)
+    assert len(done) <= 2 + elapsed[0] / PROGRESS_INTERVAL + 1, (len(done), elapsed)
+    assert len(done) < 10_001
