@@ -22,6 +22,7 @@ extensions = [
     "sphinx.ext.napoleon",
     "myst_parser",
     "api_docstrings",
+    "unresolvable_refs",
 ]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 
