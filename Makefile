@@ -11,7 +11,12 @@ PROFILE ?= resources/profiles/hbfd.json
 # page (or a changed docstring) still fails.
 SPHINX := $(VENV)/bin/sphinx-build -E -W --keep-going -q -b html docs docs/_build/html
 
-# The test runner: headless, on every core (pytest-xdist), no cache in the tree.
+# Bytecode is written (into the ignored __pycache__ folders, which `make clean` removes) even where the
+# shell sets PYTHONDONTWRITEBYTECODE: without it every test process compiled the project and
+# assertion-rewrote the 225 test modules again, 7-10 CPU-s per process and per run.
+unexport PYTHONDONTWRITEBYTECODE
+
+# The test runner: headless, on every core (pytest-xdist), no pytest cache in the tree.
 PYTEST := QT_QPA_PLATFORM=offscreen $(PY) -m pytest -q -n auto --dist worksteal -p no:cacheprovider
 # One process: the second-kernel numerics run beside the suite's workers, so a worker pool of
 # their own would only add its start-up and collection (about 16 s of CPU per worker).
