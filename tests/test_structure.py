@@ -20,6 +20,7 @@ then, for information, the numerical-kernel exemptions and the comparisons with 
 from __future__ import annotations
 
 import ast
+import functools
 import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -57,7 +58,13 @@ def files_of_tests() -> list[Path]:
 
 
 def parse(path: Path) -> ast.Module:
-    """The syntax tree of one file."""
+    """The syntax tree of one file (read-only: the checks share it, parsed once per file version)."""
+    return parse_version(path, path.stat().st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=None)
+def parse_version(path: Path, mtime_ns: int) -> ast.Module:
+    """The syntax tree of ``path`` as it was at ``mtime_ns`` (the key of the cache)."""
     return ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
 
 
@@ -108,7 +115,7 @@ def docstring_lines(tree: ast.AST) -> int:
 def module_size_violations(path: Path) -> Iterator[Violation]:
     """A module over ``MAX_MODULE_LINES`` lines, docstrings not counted."""
     text = path.read_text(encoding="utf-8")
-    lines = len(text.splitlines()) - docstring_lines(ast.parse(text))
+    lines = len(text.splitlines()) - docstring_lines(parse(path))
     if lines > MAX_MODULE_LINES:
         yield Violation(path, 1, f"module has {lines} lines without docstrings (limit {MAX_MODULE_LINES})")
 
