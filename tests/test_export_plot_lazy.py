@@ -49,7 +49,8 @@ def _sentinels() -> dict[str, tuple[tuple[object, str], ...]]:
         "zwidth_region": ((zwidth_section, "zwidth_region_result"),),
         "zwidth_optimum": ((zwidth_section, "filter_optimum"), (content, "filter_optimum")),
         "renderable": ((renderable_section, "renderable_study"),),
-        "workspace": ((workspace_section, "workspace_study"), (workspace_section, "workspace_point")),
+        "workspace_map": ((workspace_section, "workspace_study"),),
+        "workspace_point": ((workspace_section, "workspace_point"),),
     }
 
 

@@ -88,12 +88,12 @@ def test_export_polar_csv_is_the_handles_limits(capfd, profile_file, tmp_path, h
 def test_the_report_has_the_section_only_with_the_multidof_section(profile_file, handle_point):
     # the workspace part alone: the section is written as in the whole report (gather writes a section
     # when all its parts are asked), without the design chart and the other sections' results
-    with_section = gather(load_profile(profile_file), sampled=False, parts=("workspace",))
+    with_section = gather(load_profile(profile_file), sampled=False, parts=("workspace_map", "workspace_point"))
     titles = [s.title for s in with_section.sections]
     assert "Multi-DOF workspace" in titles
     m = with_section.results["workspace_map"]
     assert with_section.numbers["workspace.bound"][0] == pytest.approx(m.minimum.stiffness, abs=1e-12)
     assert with_section.numbers["workspace.handle_wall"][0] == pytest.approx(handle_point.wall, rel=1e-9)
-    without = gather(load_profile(bundled_profiles()["hbfd"]), sampled=False, parts=("workspace",))
+    without = gather(load_profile(bundled_profiles()["hbfd"]), sampled=False, parts=("workspace_map", "workspace_point"))
     assert "Multi-DOF workspace" not in [s.title for s in without.sections]
     assert "workspace_map" not in without.results

@@ -56,7 +56,7 @@ from app.report.model import (
 )
 from app.report.observer_section import observer_part
 from app.report.renderable_section import renderable_part
-from app.report.workspace_section import workspace_part
+from app.report.workspace_section import workspace_map_alone, workspace_part, workspace_point_alone
 from app.report.zwidth_section import zwidth_part, zwidth_results
 
 __all__ = ["ReportContent", "Section", "Row", "ReportCancelled", "gather", "num", "symbol_html", "app_version",
@@ -300,7 +300,8 @@ _SECTIONS: tuple[tuple[Callable[[Profile], Part], dict[str, Alone | None]], ...]
         "zwidth_region": _if("controller", lambda p: zwidth_results(p, optimum=False)),
         "zwidth_optimum": _if("controller", lambda p: {"zwidth_optimum": filter_optimum(p)})}),
     (renderable_part, {"renderable": None}),  # issue 24: only with the renderable section
-    (workspace_part, {"workspace": None}),  # issue 25: only with the multidof section
+    (workspace_part, {  # issue 25: only with the multidof section; the polar figure needs no map
+        "workspace_map": workspace_map_alone, "workspace_point": workspace_point_alone}),
 )
 #: Every part :func:`gather` can be asked for, in the report's order: the design chart, then the sections'.
 PARTS = ("chart", *(name for _, names in _SECTIONS for name in names))

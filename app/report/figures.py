@@ -234,7 +234,8 @@ _BUILDERS: dict[str, tuple[Callable[[ReportContent, str], Figure | None], tuple[
     **{k: (identify_figure, ("identification",)) for k in IDENTIFY_FIGURES},
     "zwidth_region": (zwidth_figure, ("zwidth_region",)), "filter_optimum": (zwidth_figure, ("zwidth_optimum",)),
     **{k: (renderable_figure, ("renderable",)) for k in RENDERABLE_FIGURES},
-    **{k: (workspace_figure, ("workspace",)) for k in WORKSPACE_FIGURES},
+    "workspace_map": (workspace_figure, ("workspace_map",)),
+    "workspace_polar": (workspace_figure, ("workspace_point",)),
 }
 
 

@@ -22,9 +22,9 @@ def workspace_figure(content: ReportContent, key: str) -> Figure | None:
     """The workspace map (``workspace_map``) or the polar limits (``workspace_polar``); ``None`` without them."""
     m = content.results.get("workspace_map")
     point = content.results.get("workspace_point")
-    if m is None:
-        return None
     if key == "workspace_map":
+        if m is None:
+            return None
         sec = multidof_section(content.profile)
         v = WorkspaceMapView()
         v.update_map(m)

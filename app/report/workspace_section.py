@@ -19,12 +19,32 @@ from analysis.profiles.schema import WALL_KINDS
 from analysis.study import format_number, multidof_section, workspace_point, workspace_study
 from app.report.model import Numbers, Part, Row, Section, row
 
-__all__ = ["workspace_part"]
+__all__ = ["workspace_part", "workspace_map_alone", "workspace_point_alone"]
 
 
 def _angle(n: object) -> float:
     """A wall normal's angle from the x axis [degrees], in [0, 180) (``n`` and ``-n`` are one wall)."""
     return math.degrees(math.atan2(float(n[1]), float(n[0]))) % 180.0
+
+
+def workspace_map_alone(profile: Profile) -> dict[str, object]:
+    """The workspace map alone (``workspace_map``, and ``workspace_point`` where the handle is reached),
+    for the map figure; ``{}`` without a ``multidof`` section."""
+    if profile.multidof is None:
+        return {}
+    out: dict[str, object] = {"workspace_map": workspace_study(profile)}
+    try:  # the map marks the handle when the linkage reaches it (as in the whole section)
+        out["workspace_point"] = workspace_point(profile)
+    except ValidationError:
+        pass
+    return out
+
+
+def workspace_point_alone(profile: Profile) -> dict[str, object]:
+    """The limits at the handle alone (``workspace_point``), for the polar figure: not the map over the
+    whole workspace; ``{}`` without a ``multidof`` section.  Raises :class:`ValidationError` when the
+    linkage does not reach the handle."""
+    return {} if profile.multidof is None else {"workspace_point": workspace_point(profile)}
 
 
 def workspace_part(profile: Profile) -> Part:
