@@ -110,3 +110,22 @@ def test_presets_run(dev):
     for name in SCENARIOS:
         r = simulate(dev, name, 0.3, options=hbfd_options(delay_samples=1, implementation_delay=True))
         assert np.all(np.isfinite(r.f_d))
+
+
+def test_a_frictionless_run_stops_where_it_diverges(dev):
+    """Without friction as with it, a run stops once |x_1| passes 1e6 m: the signals after it are NaN
+    (drawn as gaps and said), never the overflow of a minute-long exponential growth."""
+    import warnings
+
+    sc = Scenario(wall=False, grasp=RIGID_GRASP, initial_velocity=0.01, duration=60.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow or invalid-value warning on the way
+        r = simulate(dev, sc, display="admittance", coupling=(8.0, 400.0))
+    assert r.verdict.kind == "divergent"
+    x = r.handle_position
+    finite = np.isfinite(x)
+    stop = int(np.argmin(finite))
+    assert 0 < stop < x.size // 2 and finite[:stop].all() and not finite[stop:].any()
+    assert np.abs(x[:stop]).max() <= 1e6 < np.abs(x[:stop]).max() * 1e3  # stopped near the threshold
+    for signal in (r.f_d, r.energy, r.encoder):
+        assert np.isfinite(signal[:stop]).all() and np.isnan(signal[stop:]).all()

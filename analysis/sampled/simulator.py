@@ -16,8 +16,8 @@ regime during it, the sub-step is split in halves recursively (dyadic event loca
 ``h / 2^10``) so the regime switch happens at the right time.  The result is therefore
 independent of ``substeps`` up to the event resolution (the tests check that halving the
 sub-step changes it by less than 1e-6 relative).  Without friction the whole sample is one
-exact step.  With friction a run stops at divergence (``|x_1| > 1e6`` m or not finite) and the
-signals after it are NaN.
+exact step.  A run stops at divergence (``|x_1| > 1e6`` m or not finite) and the signals after
+it are NaN (without friction it used to run on into overflow).
 
 Each sample: the human's grasp and push (:meth:`Simulator.hand`), the sensors
 (:meth:`Simulator.sample`), the controller step, the actuator (delay, peak clip and I^2 t
@@ -354,7 +354,7 @@ class Simulator:
             if k == last:
                 break
             events += pr.advance(z, sub)
-            if pr.idx and (not np.isfinite(z[0]) or abs(z[0]) > 1e6):
+            if not np.isfinite(z[0]) or abs(z[0]) > 1e6:
                 trace.diverged(k)
                 break
         return events
