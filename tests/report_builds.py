@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import functools
 import re
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from types import MappingProxyType
 from typing import Any, NamedTuple
 from unittest import mock
@@ -76,9 +76,29 @@ def bundled_report(folder: str, name: str) -> BuiltReport:
     return _build(name, str(bundled_profiles()[name]), folder)
 
 
+class LazyReports(Mapping[str, BuiltReport]):
+    """{name: BuiltReport}, each report built when first read (:func:`bundled_report`): a test that
+    reads one profile's report does not build the others (under xdist, the tests of one profile may
+    run on another worker than those of the next)."""
+
+    def __init__(self, folder: str, names: tuple[str, ...]) -> None:
+        self._folder, self._names = folder, names
+
+    def __getitem__(self, name: str) -> BuiltReport:
+        if name not in self._names:
+            raise KeyError(name)
+        return bundled_report(self._folder, name)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._names)
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+
 def bundled_reports(folder: str, names: tuple[str, ...] | None = None) -> Mapping[str, BuiltReport]:
-    """{name: BuiltReport} for the bundled profiles ``names`` (all of them by default)."""
-    return MappingProxyType({name: bundled_report(folder, name) for name in names or sorted(bundled_profiles())})
+    """{name: BuiltReport} for the bundled profiles ``names`` (all of them by default), built lazily."""
+    return LazyReports(folder, tuple(names or sorted(bundled_profiles())))
 
 
 def flat(text: str) -> str:
