@@ -120,17 +120,12 @@ def _devices(profile, args: argparse.Namespace):
     """The batch's devices, or ``None`` without ``--batch``/``--corners``; a string says why there are none."""
     if args.batch is None and not args.corners:
         return None
-    from analysis.identify import open_intervals, parameter_box
-    from analysis.sampled.batch import box_corners, box_samples
+    from analysis.study import RobustBox
 
-    sec = profile.identification
-    if sec is None or not sec.intervals:
-        return "$.identification: --batch and --corners need the profile's identified intervals (zwidth identify)"
-    open_keys = open_intervals(sec.intervals, len(profile.device.masses))
-    if open_keys:
-        return f"$.identification.intervals: the data leave {', '.join(open_keys)} open: no box to draw from"
-    box = parameter_box(profile.device, sec.intervals)
-    return box_corners(box) if args.corners else box_samples(box, args.batch, seed=args.seed)
+    box = RobustBox.of(profile, "corners" if args.corners else "samples", args.batch or 0, args.seed)
+    if isinstance(box, str):
+        return f"$.identification: --batch and --corners draw from the identified box: {box}"
+    return box.devices(profile.device)
 
 
 def _client(address: str):

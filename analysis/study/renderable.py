@@ -182,6 +182,29 @@ class RobustBox:
     samples: int = ROBUST_SAMPLES
     seed: int = 0
 
+    @classmethod
+    def of(cls, profile: Profile, kind: str, samples: int = ROBUST_SAMPLES, seed: int = 0) -> RobustBox | str:
+        """The batch of the profile's identified box, or why there is none (:func:`robust_box_reason`).
+
+        Parameters
+        ----------
+        profile : Profile
+            The device profile, with its identification section's intervals.
+        kind : str
+            ``"corners"`` or ``"samples"``.
+        samples : int, optional
+            Number of samples (``"samples"`` only).
+        seed : int, optional
+            Seed of the samples.
+
+        Returns
+        -------
+        RobustBox or str
+            The batch, or the reason in words.
+        """
+        box = _closed_intervals(profile)
+        return box if isinstance(box, str) else cls(box, kind, int(samples), int(seed))
+
     def devices(self, device: Device) -> list[Device]:
         """The batch: ``device`` with the boxed parameters at the corners or samples of the box.
 
@@ -287,7 +310,7 @@ class RenderableRequest:
         """
         if robust not in ROBUST_KINDS:
             raise ValidationError("robust", f"one of {', '.join(ROBUST_KINDS)}", robust)
-        box = None if robust == "off" else _closed_intervals(profile)
+        box = None if robust == "off" else RobustBox.of(profile, robust, int(samples), int(seed))
         sec = renderable_section(profile)
         settings = QualitySettings(grasps=GRASPS[sec.grasps], band=(sec.band_low, sec.band_high),
                                    tolerance=sec.tolerance, encoder_resolution=sec.quiet_resolution,
@@ -297,9 +320,9 @@ class RenderableRequest:
         damping = damping_from_axis(u)
         damping[0], damping[-1] = sec.damping_min, sec.damping_max  # the ends exactly as given
         d, implementation = delays(profile)
-        drawn = robust == "samples"  # the corners have no count or seed: changing them recomputes nothing
-        batch = (RobustBox(box, robust, int(samples) if drawn else 0, int(seed) if drawn else 0)
-                 if isinstance(box, tuple) else None)
+        if isinstance(box, RobustBox) and robust != "samples":  # the corners have no count or seed:
+            box = RobustBox(box.intervals, robust, 0, 0)  # changing them recomputes nothing
+        batch = box if isinstance(box, RobustBox) else None
         return cls(profile.device, profile_filter(profile), int(d) + int(implementation), sec.acceleration,
                    tuple(sec.qualities), settings, tuple(float(m) for m in mass), tuple(float(b) for b in damping),
                    batch)
