@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 import pyqtgraph as pg
-from PySide6.QtCore import QEvent, QObject, QSize, Qt, QTimer, Signal
+from PySide6.QtCore import QEvent, QObject, QSize, Qt, Signal
 from PySide6.QtGui import QResizeEvent, QShowEvent
 from PySide6.QtWidgets import (
     QAbstractScrollArea,
@@ -38,6 +38,7 @@ from app.core.compute_graph import ComputeGraph
 from app.core.model import ProfileModel
 from app.core.settings import Settings
 from app.views.base import PlotView
+from app.widgets.settle import settle_later
 
 __all__ = ["AppContext", "AnalysisTab", "scroll_body", "PLOT_MIN_HEIGHT", "DataAreaFloor", "SettingsScroll",
            "settings_beside_plots"]
@@ -59,11 +60,7 @@ class DataAreaFloor(QObject):
     def __init__(self, view: PlotView) -> None:
         super().__init__(view)
         self.view = view
-        self._timer = QTimer(self)
-        self._timer.setSingleShot(True)
-        self._timer.setInterval(0)
-        self._timer.timeout.connect(self.fit)
-        view.plot.getViewBox().sigResized.connect(self._timer.start)
+        view.plot.getViewBox().sigResized.connect(self.schedule)
         view.plot_widget.installEventFilter(self)
         self._own_width = view.plot_widget.minimumWidth()
         self.fit()
@@ -106,6 +103,10 @@ class DataAreaFloor(QObject):
             need = max(need, length + 4 + vb.size().height() - item.size().height())
         return math.ceil(need)
 
+    def schedule(self, *_args: object) -> None:
+        """Fit once the layouts took the change, before the next paint (:func:`settle_later`)."""
+        settle_later(self, self.fit)
+
     def fit(self) -> None:
         pw = self.view.plot_widget
         least = max(PLOT_MIN_HEIGHT, self.y_titles()) + self.overhead()
@@ -120,7 +121,7 @@ class DataAreaFloor(QObject):
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt API
         if event.type() in (QEvent.Type.Resize, QEvent.Type.Show, QEvent.Type.LayoutRequest):
-            self._timer.start()
+            self.schedule()
         return super().eventFilter(watched, event)
 
 
@@ -202,7 +203,7 @@ class _TabScroll(QScrollArea):
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt API
         if event.type() in (QEvent.Type.LayoutRequest, QEvent.Type.Resize) and watched is not None:
             if watched is self.widget():  # after the layout took the new minimum, or the labels their widths
-                QTimer.singleShot(0, self, self.fit_body)
+                settle_later(self, self.fit_body)
             elif watched is self.viewport():
                 self.fit_body()
         return super().eventFilter(watched, event)
@@ -250,7 +251,7 @@ class SettingsScroll(QScrollArea):
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt API
         if watched is self.widget() and event.type() == QEvent.Type.LayoutRequest:
-            QTimer.singleShot(0, self, self.fit_width)
+            settle_later(self, self.fit_width)
         return super().eventFilter(watched, event)
 
 

@@ -11,8 +11,10 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 
 import pyqtgraph as pg
-from PySide6.QtCore import QObject, QTimer
+from PySide6.QtCore import QObject
 from PySide6.QtWidgets import QGraphicsItem
+
+from app.widgets.settle import settle_later
 
 __all__ = ["BelowLegend", "LegendRow", "HaloSample", "swatch", "set_swatch_brush", "sync_legend"]
 
@@ -84,15 +86,11 @@ class LegendRow(QObject):
                  relayout: Callable[[], None], columns: int = 3, parent: QObject | None = None) -> None:
         super().__init__(parent)
         self.plot, self._width, self._relayout = plot, width, relayout
-        self._timer = QTimer(self)  # refits after the legend's texts or size changed
-        self._timer.setSingleShot(True)
-        self._timer.setInterval(0)
-        self._timer.timeout.connect(self.fit)
         entries = [(sample.item, label.text) for sample, label in old.items]
         old.clear()
         if old.scene() is not None:
             old.scene().removeItem(old)
-        legend = BelowLegend(self._timer.start, labelTextSize="8pt", colCount=columns, horSpacing=2,
+        legend = BelowLegend(self.schedule, labelTextSize="8pt", colCount=columns, horSpacing=2,
                              verSpacing=-6)
         legend.setParentItem(plot)
         plot.layout.addItem(legend, 4, 0, 1, 3)  # the whole width, below the x axis
@@ -102,6 +100,10 @@ class LegendRow(QObject):
         legend.setBrush(pg.mkBrush(0, 0, 0, 0))
         legend.setPen(pg.mkPen(None))
         self.legend = legend
+
+    def schedule(self) -> None:
+        """Refit after the legend's texts or size changed, before the next paint (:func:`settle_later`)."""
+        settle_later(self, self.fit)
 
     def fit(self) -> None:
         """As many entries per row as fit in the widget's width (at least one)."""

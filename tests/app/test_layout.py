@@ -170,7 +170,8 @@ def test_sampled_settings_panel_collapses(qtbot, win):
     """The sampled-data tab's settings panel is collapsed by default: the plots get the width."""
     tab = win.tab(SampledTab)
     win.tabs.setCurrentWidget(tab)
-    qtbot.waitUntil(lambda: not tab.stale, timeout=20000)
+    # its computations done: while they run, their progress bars widen the plots' column
+    qtbot.waitUntil(lambda: not tab.stale and not win.runner.running(), timeout=20000)
     assert not tab.controls.isVisible()
     plots_width = tab.map_view.width() + tab.exact_view.width()
     assert plots_width > 0.85 * tab.width()
