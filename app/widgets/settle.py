@@ -31,7 +31,8 @@ __all__ = ["MAX_ROUNDS", "Settler", "settle_later", "settler"]
 MAX_ROUNDS = 12
 
 _SETTLE = QEvent.Type(QEvent.registerEventType())
-_WATCHED = "settlerWatched"  # a window's property: the settler filters its UpdateRequests
+_WATCHED = "settlerWatched"
+_NAME = "zwidthSettler"  # the settler's object name under the application  # a window's property: the settler filters its UpdateRequests
 
 
 class Settler(QObject):
@@ -108,16 +109,15 @@ class Settler(QObject):
             QCoreApplication.postEvent(self, QEvent(_SETTLE), Qt.EventPriority.HighEventPriority.value)
 
 
-_settler: Settler | None = None
-
-
 def settler() -> Settler:
-    """The application's settler (made on first use, owned by the application object)."""
-    global _settler
+    """The application's settler: a child of the application object, made on first use (no module
+    state: a new application gets its own)."""
     app = QCoreApplication.instance()
-    if _settler is None or not Shiboken.isValid(_settler) or _settler.parent() is not app:
-        _settler = Settler(app)
-    return _settler
+    found = app.findChild(Settler, _NAME, Qt.FindChildOption.FindDirectChildrenOnly)
+    if found is None:
+        found = Settler(app)
+        found.setObjectName(_NAME)
+    return found
 
 
 def settle_later(owner: QObject, refit: Callable[[], object]) -> None:
