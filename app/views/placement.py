@@ -14,13 +14,12 @@ from collections.abc import Callable
 
 import numpy as np
 import pyqtgraph as pg
-from PySide6.QtCore import QObject, QPointF, QRectF, Slot
+from PySide6.QtCore import QObject, QPointF, QRectF, QTimer, Slot
 from PySide6.QtGui import QFont
 from PySide6.QtWidgets import QGraphicsTextItem
 
 from analysis.study.quantities import rich_numbers
 from app.views.base import rich_label
-from app.widgets.settle import settle_later
 
 __all__ = ["LegendPlacer", "CenterMessage", "scene_points", "densify"]
 
@@ -69,6 +68,10 @@ class LegendPlacer(QObject):
         self.view = view
         self.areas, self.rects = areas, rects
         self.choice = 0
+        self._timer = QTimer(self)
+        self._timer.setSingleShot(True)
+        self._timer.setInterval(0)
+        self._timer.timeout.connect(self.place)
         view.legend.layout.setContentsMargins(4, 2, 4, 2)  # compact: less to place
         vb = view.plot.getViewBox()
         vb.sigRangeChanged.connect(self.schedule)
@@ -76,8 +79,7 @@ class LegendPlacer(QObject):
 
     @Slot()
     def schedule(self) -> None:
-        """Place the legend once the view's range and size settled, before the next paint."""
-        settle_later(self, self.place)
+        self._timer.start()
 
     def obstacles(self) -> np.ndarray:
         """Scene points the legend must not cover: the curves and markers (filled areas: see :meth:`area_points`)."""
