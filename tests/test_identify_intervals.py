@@ -145,3 +145,32 @@ def test_a_repeated_conditional_solve_is_not_run_again():
     prof.conditional(0, math.log(0.8), np.array([math.log(4.0)]))
     prof.conditional(0, math.log(0.9), start)
     assert prof.solves == 3
+
+
+def test_a_side_whose_end_fits_is_unbounded_without_walking_there(monkeypatch):
+    """A ground damping far below what 1 % noise shows: below the estimate the profile stays flat,
+    so the side is unbounded.  Once the walk is a capped step out, the end (a factor 1000) is
+    solved once and found inside the likelihood region: the side is unbounded in a third of the
+    solves of walking there; the bounded upper side comes out the same, the probe's one solve aside."""
+    from analysis.identify import FitProblem, Profiler
+    from analysis.identify import profile as profile_module
+    from analysis.identify.params import ChainParameters
+    from analysis.identify.problem import solve_held
+
+    rng = np.random.default_rng(5)
+    w = np.geomspace(1.0, 100.0, 60)
+    h = with_noise(-1.0 / (0.7 * w**2 + 1j * 1e-3 * w), rng)
+    base = ChainParameters(np.array([[0.7]]), np.zeros((1, 0)), np.zeros((1, 0)), np.array([[1e-3]]))
+    problem = FitProblem((make_measurement(w, h, "actuator", "free"),), ("masses[0]", "ground_dampings[0]"), base)
+    rss, theta = solve_held(problem, np.log([0.7, 1e-3]), ("ground_dampings[0]",), 100)
+    probed = Profiler(problem, theta, rss, np.zeros((0, 0)))
+    low, high = probed.interval(1)
+    monkeypatch.setattr(profile_module, "_PROBE", math.inf)  # the walk all the way, as before
+    walked = Profiler(problem, theta, rss, np.zeros((0, 0)))
+    low_w, high_w = walked.interval(1)
+    assert not low.bounded and not low_w.bounded and low.theta == low_w.theta == -math.inf
+    assert 3 * low.solves <= low_w.solves  # 6 against 18 here
+    assert high.bounded and high_w.bounded and high.theta == high_w.theta and high.solves <= high_w.solves + 1
+    # the proof: the profile a factor 1000 below the estimate is inside the likelihood region
+    end, _ = solve_held(problem, theta - np.array([0.0, math.log(1e3)]), ("ground_dampings[0]",), 30)
+    assert probed.tau(end) < probed.target

@@ -33,7 +33,10 @@ shrank to nothing (:mod:`analysis.identify.degenerate`) passes the restarts that
 its share, so the walk can leave the plateau.  A side that stays below the
 target up to the physical range of the parameter, or a factor 1000 from the estimate, is
 unbounded: the interval is reported as ``0`` or ``inf`` on that side (the data do not bound the
-parameter).  ``reference`` replaces the optimum's RSS as the level the ratio is taken from
+parameter).  Once the walk has passed one capped step (0.5) below the target, that end is solved
+once from the walk's last point: when it is below the target too, the side is unbounded without
+walking the rest (the chain found there lies inside the likelihood region, so the interval's hull
+reaches it); otherwise the walk goes on as before.  ``reference`` replaces the optimum's RSS as the level the ratio is taken from
 when the optimum's gain over a simpler chain is not evidence (:mod:`analysis.identify.hidden`);
 ``s^2`` stays the optimum's.  A profile point that fits better than the optimum is recorded: the fit was not the
 global optimum, and the caller says so.
@@ -54,6 +57,7 @@ __all__ = ["ProfileBound", "Profiler", "curvature_ratios", "profile_critical_val
 _SPAN = math.log(1e3)  # a side not bounded within a factor 1000 of the estimate is unbounded
 _MAX_STEPS = 24
 _MAX_STEP = 0.5  # largest step of the walk in log units (the valley of a weak mode bends)
+_PROBE = _MAX_STEP  # past one capped step below the target, the end of the walk is tried once
 _REFINE = 4
 _TAU_TOL = 0.1
 _NFEV = 30
@@ -209,6 +213,7 @@ class Profiler:
         delta = min(self.target * sd, _MAX_STEP) if sd > 0 else 0.05
         pts = [(0.0, 0.0, np.delete(self.theta, j))]
         slope = self._slope(j) * sign
+        probed = False
         for _ in range(_MAX_STEPS):
             at_limit = delta >= limit
             delta = min(delta, limit)
@@ -229,9 +234,25 @@ class Profiler:
             pts.append((delta, tau, oth))
             if at_limit or delta >= _SPAN:
                 return ProfileBound(sign * math.inf, False, self.solves - before)
-            grow = self.target / tau if tau > 0 else 2.0
-            delta = min(delta * min(max(grow, 1.3), 2.0), delta + _MAX_STEP)
+            if not probed and delta >= _PROBE:
+                probed = True
+                if self._reaches_end(j, sign, limit, oth):
+                    return ProfileBound(sign * math.inf, False, self.solves - before)
+            delta = self._next(delta, tau)
         return ProfileBound(sign * math.inf, False, self.solves - before)
+
+    def _next(self, delta: float, tau: float) -> float:
+        """The walk's next step from a point at ``delta`` below the target (module doc)."""
+        grow = self.target / tau if tau > 0 else 2.0
+        return min(delta * min(max(grow, 1.3), 2.0), delta + _MAX_STEP)
+
+    def _reaches_end(self, j: int, sign: int, limit: float, start: np.ndarray) -> bool:
+        """Whether the profile at the end of the walk (the physical limit or a factor 1000 from the
+        estimate) is below the target, solved once from ``start``: the side is then unbounded
+        (that chain lies inside the likelihood region), without walking there."""
+        end = min(limit, _SPAN)
+        rss, _ = self.conditional(j, self.theta[j] + sign * end, start)
+        return self.tau(rss) < self.target
 
     def _refine(self, j: int, sign: int, a: tuple, b: tuple) -> float:
         """Regula falsi for ``tau = target`` between the profile points ``a`` (below) and ``b``."""
