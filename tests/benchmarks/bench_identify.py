@@ -69,7 +69,8 @@ def _actuator_alone_row(dev, quick: bool) -> dict:
     time and model evaluations, each a batched evaluation of one or more chains.  Measured under
     load: 14 184 evaluations, 11.1 CPU-s at 8fc5eaa; 13 928, 10.1 CPU-s with the profile's repeated
     restarts answered from the first solve and the key lookups of each evaluation read once
-    (results bit for bit the same)."""
+    (results bit for bit the same); 11 665 with the profile's far-end probe (ea4c038, intervals bit
+    for bit the same)."""
     ms = _measurements(dev, 400, 0.01, 2007)
     calls = [0]
 
