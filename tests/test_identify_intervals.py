@@ -147,13 +147,12 @@ def test_a_repeated_conditional_solve_is_not_run_again():
     assert prof.solves == 3
 
 
-def test_a_side_whose_end_fits_is_unbounded_without_walking_there(monkeypatch):
+def test_a_side_whose_end_fits_is_unbounded_without_walking_there():
     """A ground damping far below what 1 % noise shows: below the estimate the profile stays flat,
     so the side is unbounded.  Once the walk is a capped step out, the end (a factor 1000) is
     solved once and found inside the likelihood region: the side is unbounded in a third of the
     solves of walking there; the bounded upper side comes out the same, the probe's one solve aside."""
     from analysis.identify import FitProblem, Profiler
-    from analysis.identify import profile as profile_module
     from analysis.identify.params import ChainParameters
     from analysis.identify.problem import solve_held
 
@@ -165,8 +164,8 @@ def test_a_side_whose_end_fits_is_unbounded_without_walking_there(monkeypatch):
     rss, theta = solve_held(problem, np.log([0.7, 1e-3]), ("ground_dampings[0]",), 100)
     probed = Profiler(problem, theta, rss, np.zeros((0, 0)))
     low, high = probed.interval(1)
-    monkeypatch.setattr(profile_module, "_PROBE", math.inf)  # the walk all the way, as before
     walked = Profiler(problem, theta, rss, np.zeros((0, 0)))
+    walked.probe_after = math.inf  # the walk all the way, as before
     low_w, high_w = walked.interval(1)
     assert not low.bounded and not low_w.bounded and low.theta == low_w.theta == -math.inf
     assert 3 * low.solves <= low_w.solves  # 6 against 18 here

@@ -57,7 +57,6 @@ __all__ = ["ProfileBound", "Profiler", "curvature_ratios", "profile_critical_val
 _SPAN = math.log(1e3)  # a side not bounded within a factor 1000 of the estimate is unbounded
 _MAX_STEPS = 24
 _MAX_STEP = 0.5  # largest step of the walk in log units (the valley of a weak mode bends)
-_PROBE = _MAX_STEP  # past one capped step below the target, the end of the walk is tried once
 _REFINE = 4
 _TAU_TOL = 0.1
 _NFEV = 30
@@ -133,6 +132,9 @@ class Profiler:
         self.solves = 0
         self._done: dict[tuple[int, float, bytes], tuple[float, np.ndarray]] = {}
         self.extra_starts = tuple(np.asarray(x, float) for x in extra_starts)
+        #: how far out [log units] a walk still below the target tries its end once (one capped
+        #: step; ``math.inf`` walks all the way, as before the probe)
+        self.probe_after = _MAX_STEP
 
     def conditional(self, j: int, tj: float, start: np.ndarray) -> tuple[float, np.ndarray]:
         """``RSS_p(tj)`` and the other parameters at it, from ``start``.
@@ -234,7 +236,7 @@ class Profiler:
             pts.append((delta, tau, oth))
             if at_limit or delta >= _SPAN:
                 return ProfileBound(sign * math.inf, False, self.solves - before)
-            if not probed and delta >= _PROBE:
+            if not probed and delta >= self.probe_after:
                 probed = True
                 if self._reaches_end(j, sign, limit, oth):
                     return ProfileBound(sign * math.inf, False, self.solves - before)
