@@ -11,7 +11,7 @@ from typing import NamedTuple
 import numpy as np
 import pyqtgraph as pg
 from PySide6.QtCore import QPointF, QRectF, Qt, Signal, Slot
-from PySide6.QtGui import QAction, QColor, QFont, QPainter
+from PySide6.QtGui import QAction, QColor, QFont, QPainter, QPen
 from PySide6.QtWidgets import QGraphicsItem, QHBoxLayout, QLabel, QVBoxLayout, QWidget
 
 from analysis.study.displays import DisplayKind
@@ -101,7 +101,24 @@ def decade_label(exponent: int) -> str:
 
 class LogAxis(pg.AxisItem):
     """An axis whose log-mode labels are decades only (plus 2 and 5 when under two decades show); its
-    linear-mode labels typeset as the views' other text (a true minus "−", ``1×10⁵``)."""
+    linear-mode labels typeset as the views' other text (a true minus "−", ``1×10⁵``).
+
+    Its grid lines are opaque, their colour the translucent grid colour already blended over
+    :attr:`grid_background` (the plot's background; the view sets it with the theme), and the axis
+    lies under the data (``z`` below the view box's): the same pixels where the grid shows, the grid
+    hidden under curves and fills as in most plotting tools, and Qt's raster engine draws an opaque
+    line about twenty times faster than a translucent one (the grid was most of an axis repaint)."""
+
+    #: The colour the grid lines are blended over; ``None`` keeps pyqtgraph's translucent lines.
+    grid_background: QColor | None = None
+
+    def generateDrawSpecs(self, p: QPainter):  # noqa: N802 - pyqtgraph API
+        specs = super().generateDrawSpecs(p)
+        bg = self.grid_background
+        if specs is None or bg is None:
+            return specs
+        axis_spec, tick_specs, text_specs = specs
+        return axis_spec, [(opaque_pen(pen, bg), p1, p2) for pen, p1, p2 in tick_specs], text_specs
 
     def tickStrings(self, values: list[float], scale: float, spacing: float) -> list[str]:  # noqa: N802
         return [superscript_numbers(text) for text in super().tickStrings(values, scale, spacing)]
@@ -122,6 +139,18 @@ class LogAxis(pg.AxisItem):
             else:
                 out.append("")
         return out
+
+
+def opaque_pen(pen: QPen, background: QColor) -> QPen:
+    """``pen`` with its colour blended over ``background`` and made opaque (itself when it is opaque)."""
+    c = pen.color()
+    a = c.alphaF()
+    if a >= 1.0:
+        return pen
+    out = QPen(pen)
+    out.setColor(QColor.fromRgbF(a * c.redF() + (1 - a) * background.redF(), a * c.greenF() + (1 - a) * background.greenF(),
+                                 a * c.blueF() + (1 - a) * background.blueF()))
+    return out
 
 
 def mark_design_point(item: pg.PlotDataItem, x: float, y: float, stable: bool | None, pal: dict) -> str:
@@ -193,6 +222,7 @@ class PlotView(QWidget):
             axis = self.plot.getAxis(ax)
             # the axis (with its grid) is cached as a pixmap: a curve update does not replay its text
             axis.setCacheMode(QGraphicsItem.CacheMode.DeviceCoordinateCache)
+            axis.setZValue(-200)  # under the view box (-100): the grid behind the data (LogAxis)
             axis.enableAutoSIPrefix(False)
             axis.setTickFont(QFont(self.font().family(), 9))
         self.legend = self.plot.addLegend(offset=(-10, 10), labelTextSize="9pt")
@@ -352,6 +382,8 @@ class PlotView(QWidget):
         self.plot_widget.setBackground(pal["bg"])
         for ax in ("left", "bottom", "top", "right"):
             axis = self.plot.getAxis(ax)
+            if isinstance(axis, LogAxis):
+                axis.grid_background = QColor(pal["bg"])
             axis.setPen(pg.mkPen(pal["fg"]))
             axis.setTextPen(pg.mkPen(pal["fg"]))
         if self.plot.getAxis("left").labelText:
