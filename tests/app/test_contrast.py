@@ -369,14 +369,16 @@ def settle(window, qtbot) -> None:
     qtbot.wait(100)
 
 
-def tab_contrast(window, qtbot, where: str | None = None) -> tuple[list[str], int]:
-    """Every widget and plot of the current tab (settled), the verdict bar and the parameter panel:
-    the ones below AA (named by ``where``, default the tab's title), and how many were measured."""
+def tab_contrast(window, qtbot, where: str | None = None, whole: bool = True) -> tuple[list[str], int]:
+    """Every widget and plot of the current tab (settled), and with ``whole`` the rest of the window
+    (the verdict bar, the parameter panel, the tab bar): the ones below AA (named by ``where``, default
+    the tab's title), and how many were measured.  A sweep over the tabs in one theme measures the
+    rest of the window once (it is the same on every tab)."""
     window.grab()  # lays out and polishes whatever the last refresh changed, before any rectangle is read
     qtbot.wait(50)
     name = window.tabs.tabText(window.tabs.currentIndex()) if where is None else where
     probe = Probe(window)
-    probe.widgets(window)
+    probe.widgets(window if whole else window.tabs.currentWidget())
     for view in window.tabs.currentWidget().findChildren(PlotView):
         if view.isVisible():
             probe.plot(view)

@@ -215,9 +215,11 @@ def _sweep_settle(win, qtbot, tab) -> None:
     qtbot.wait(150)  # the deferred refits (tab scroll area, legend rows, data-area floors)
 
 
-def _check_tab(win, qtbot, sweep: Sweep, run: Pass, where: str, tab: QWidget) -> tuple[list[str], int, int]:
+def _check_tab(win, qtbot, sweep: Sweep, run: Pass, where: str, tab: QWidget,
+               first: bool) -> tuple[list[str], int, int]:
     """Every check of ``sweep`` in ``run`` on the current, settled ``tab``: the problems, the visible
-    plot widgets (counted by the ``whole`` and ``tall`` checks) and the contrasts measured."""
+    plot widgets (counted by the ``whole`` and ``tall`` checks) and the contrasts measured (the rest of
+    the window's on the ``first`` tab of the pass only: it is the same on every tab)."""
     problems, seen, measured = [], 0, 0
     if run.readable:
         # retried like this file's checks: a window made at this size lays a tab out over a few turns
@@ -230,7 +232,7 @@ def _check_tab(win, qtbot, sweep: Sweep, run: Pass, where: str, tab: QWidget) ->
     if run.whole and (sweep.whole or sweep.tall):
         seen = sum(v.plot_widget.isVisible() for v in tab.views())
     if run.contrast:
-        found, measured = tab_contrast(win, qtbot, where)
+        found, measured = tab_contrast(win, qtbot, where, whole=first)
         problems += found
     if run.whole and sweep.whole and hasattr(tab, "show_controls"):  # the Sampled-data tab's settings
         tab.show_controls(True)
@@ -258,7 +260,7 @@ def _sweep_pass(win, qtbot, sweep: Sweep, run: Pass) -> list[str]:
         _sweep_settle(win, qtbot, tab)
         where = f"{label} {win.tabs.tabText(i)}"
         assert (win.width(), win.height()) == sweep.size, f"{where}: the window grew to fit its contents"
-        found, n, m = _check_tab(win, qtbot, sweep, run, where, tab)
+        found, n, m = _check_tab(win, qtbot, sweep, run, where, tab, first=i == 0)
         problems += found
         seen += n
         measured += m
