@@ -10,6 +10,7 @@ from PySide6.QtCore import Signal, Slot
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QWidget
 
 from app.core.compute_graph import ComputeGraph
+from app.widgets.progress_value import set_progress
 
 __all__ = ["NodeProgress"]
 
@@ -60,8 +61,7 @@ class NodeProgress(QWidget):
     @Slot(str, int, int)
     def _on_progress(self, name: str, done: int, total: int) -> None:
         if name == self.name and self.running:
-            self.bar.setRange(0, max(total, 1))
-            self.bar.setValue(done)
+            set_progress(self.bar, done, max(total, 1))
 
     @Slot(str)
     def _on_end(self, name: str) -> None:

@@ -10,6 +10,7 @@ from PySide6.QtCore import Slot
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QSizePolicy, QWidget
 
 from app.core.compute_graph import ComputeGraph
+from app.widgets.progress_value import set_progress
 
 __all__ = ["TaskProgress", "TASK_TITLES"]
 
@@ -75,8 +76,7 @@ class TaskProgress(QWidget):
     @Slot(str, int, int)
     def _on_progress(self, name: str, done: int, total: int) -> None:
         if name == self._name:
-            self.bar.setRange(0, total)
-            self.bar.setValue(done)
+            set_progress(self.bar, done, total)
 
     @Slot(str)
     def _on_end(self, name: str) -> None:
