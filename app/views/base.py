@@ -225,6 +225,8 @@ class PlotView(QWidget):
             axis.setZValue(-200)  # under the view box (-100): the grid behind the data (LogAxis)
             axis.enableAutoSIPrefix(False)
             axis.setTickFont(QFont(self.font().family(), 9))
+        for ax in ("top", "right"):  # hidden on every view: not re-typeset on each range change (SI prefix)
+            self.plot.getAxis(ax).enableAutoSIPrefix(False)
         self.legend = self.plot.addLegend(offset=(-10, 10), labelTextSize="9pt")
         # one "Export" in the right-click menu: ours (below), not pyqtgraph's scene exporter dialog
         self.plot_widget.scene().contextMenu = []

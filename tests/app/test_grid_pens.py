@@ -63,3 +63,23 @@ def test_a_views_grid_is_opaque_under_the_data(qapp, dark):
         assert all(pen.color().alpha() == 255 for pen, _p1, _p2 in ticks), name
         assert axis.zValue() < vb.zValue()  # under the data
     view.deleteLater()
+
+
+def test_the_hidden_axes_are_not_retypeset_on_a_range_change(qapp):
+    """pyqtgraph's hidden top and right axes re-typeset their label (auto SI prefix) on every range
+    change: about 6 600 times in five tab test files.  No view shows them; they keep still."""
+    view = StabilityPlot()
+    view.resize(600, 400)
+    view.show()
+    QApplication.processEvents()
+    changes = {"top": 0, "right": 0}
+    for name in changes:
+        axis = view.plot.getAxis(name)
+        assert not axis.isVisible() and not axis.autoSIPrefix
+        axis.label.document().contentsChanged.connect(lambda name=name: changes.__setitem__(name, changes[name] + 1))
+    for lo, hi in ((1.0, 10.0), (2.0, 300.0), (0.5, 7.0)):
+        view.plot.setXRange(lo, hi, padding=0)
+        view.plot.setYRange(lo, hi, padding=0)
+        QApplication.processEvents()
+    assert changes == {"top": 0, "right": 0}
+    view.deleteLater()
