@@ -14,15 +14,16 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 
 
-def load_checker():
-    spec = importlib.util.spec_from_file_location("api_docstrings", ROOT / "docs" / "_ext" / "api_docstrings.py")
+def docs_extension(name: str):
+    """The docs build's extension ``docs/_ext/<name>.py``, imported as the build imports it."""
+    spec = importlib.util.spec_from_file_location(name, ROOT / "docs" / "_ext" / f"{name}.py")
     module = importlib.util.module_from_spec(spec)
-    sys.modules.setdefault("api_docstrings", module)
+    sys.modules.setdefault(name, module)
     spec.loader.exec_module(module)
     return module
 
 
-checker = load_checker()
+checker = docs_extension("api_docstrings")
 
 
 def undocumented(x: float, y: float) -> float:

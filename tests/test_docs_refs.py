@@ -7,8 +7,6 @@ reference which could resolve keeps it.
 
 from __future__ import annotations
 
-import importlib.util
-import sys
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -16,20 +14,13 @@ from docutils.frontend import get_default_settings
 from docutils.parsers.rst import Parser
 from docutils.utils import new_document
 from sphinx.addnodes import pending_xref
+from test_api_docstrings import docs_extension
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
-def _extension():
-    spec = importlib.util.spec_from_file_location("unresolvable_refs", ROOT / "docs" / "_ext" / "unresolvable_refs.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules.setdefault("unresolvable_refs", module)
-    spec.loader.exec_module(module)
-    return module
-
-
 def test_only_references_no_documented_object_can_match_lose_the_fuzzy_search():
-    ext = _extension()
+    ext = docs_extension("unresolvable_refs")
     objects = {"analysis.Device": None, "analysis.twoport.ImpedanceDisplay.max_stiffness": None}
     settings = get_default_settings(Parser)
     settings.env = SimpleNamespace(domains={"py": SimpleNamespace(objects=objects)})
