@@ -310,7 +310,9 @@ class RenderableRequest:
         """
         if robust not in ROBUST_KINDS:
             raise ValidationError("robust", f"one of {', '.join(ROBUST_KINDS)}", robust)
-        box = None if robust == "off" else RobustBox.of(profile, robust, int(samples), int(seed))
+        drawn = robust == "samples"  # the corners have no count or seed: changing them recomputes nothing
+        box = None if robust == "off" else RobustBox.of(profile, robust, int(samples) if drawn else 0,
+                                                        int(seed) if drawn else 0)
         sec = renderable_section(profile)
         settings = QualitySettings(grasps=GRASPS[sec.grasps], band=(sec.band_low, sec.band_high),
                                    tolerance=sec.tolerance, encoder_resolution=sec.quiet_resolution,
@@ -320,8 +322,6 @@ class RenderableRequest:
         damping = damping_from_axis(u)
         damping[0], damping[-1] = sec.damping_min, sec.damping_max  # the ends exactly as given
         d, implementation = delays(profile)
-        if isinstance(box, RobustBox) and robust != "samples":  # the corners have no count or seed:
-            box = RobustBox(box.intervals, robust, 0, 0)  # changing them recomputes nothing
         batch = box if isinstance(box, RobustBox) else None
         return cls(profile.device, profile_filter(profile), int(d) + int(implementation), sec.acceleration,
                    tuple(sec.qualities), settings, tuple(float(m) for m in mass), tuple(float(b) for b in damping),

@@ -16,13 +16,12 @@ __all__ = ["set_progress"]
 def set_progress(bar: QProgressBar, done: int, maximum: int) -> None:
     """Show ``done`` of ``maximum`` (``maximum`` 0: the busy indicator) on ``bar``, painted with the
     next paint of its window rather than at once."""
-    if not bar.updatesEnabled():  # held by a parent already: nothing is painted now either
-        bar.setRange(0, maximum)
-        bar.setValue(done)
-        return
-    bar.setUpdatesEnabled(False)  # QWidget.repaint() does nothing while updates are off
+    held = bar.updatesEnabled()  # off already when a parent holds them: nothing is painted now either
+    if held:
+        bar.setUpdatesEnabled(False)  # QWidget.repaint() does nothing while updates are off
     try:
         bar.setRange(0, maximum)
         bar.setValue(done)
     finally:
-        bar.setUpdatesEnabled(True)  # back on: one update() of the whole bar, coalesced
+        if held:
+            bar.setUpdatesEnabled(True)  # back on: one update() of the whole bar, coalesced
