@@ -16,7 +16,7 @@ import math
 from analysis.errors import ValidationError
 from analysis.profiles import Profile
 from analysis.profiles.schema import WALL_KINDS
-from analysis.study import format_number, multidof_section, workspace_point, workspace_study
+from analysis.study import WorkspacePoint, format_number, multidof_section, workspace_point, workspace_study
 from app.report.model import Numbers, Part, Row, Section, row
 
 __all__ = ["workspace_part", "workspace_map_alone", "workspace_point_alone"]
@@ -27,16 +27,23 @@ def _angle(n: object) -> float:
     return math.degrees(math.atan2(float(n[1]), float(n[0]))) % 180.0
 
 
+def _handle_point(profile: Profile) -> tuple[WorkspacePoint | None, str]:
+    """The limits at the profile's handle, or ``None`` and the report's sentence saying why not."""
+    try:
+        return workspace_point(profile), ""
+    except ValidationError as err:
+        return None, f" At the handle: {html.escape(str(err))}."
+
+
 def workspace_map_alone(profile: Profile) -> dict[str, object]:
     """The workspace map alone (``workspace_map``, and ``workspace_point`` where the handle is reached),
     for the map figure; ``{}`` without a ``multidof`` section."""
     if profile.multidof is None:
         return {}
     out: dict[str, object] = {"workspace_map": workspace_study(profile)}
-    try:  # the map marks the handle when the linkage reaches it (as in the whole section)
-        out["workspace_point"] = workspace_point(profile)
-    except ValidationError:
-        pass
+    pt, _note = _handle_point(profile)  # the map marks the handle when the linkage reaches it
+    if pt is not None:
+        out["workspace_point"] = pt
     return out
 
 
@@ -66,12 +73,8 @@ def workspace_part(profile: Profile) -> Part:
         row(numbers, "workspace.reachable", "grid points the linkage reaches", "", float(m.reachable.sum()), ""),
     ]
     results: dict[str, object] = {"workspace_map": m}
-    note = ""
-    try:
-        pt = workspace_point(profile)
-    except ValidationError as err:
-        note = f" At the handle: {html.escape(str(err))}."
-    else:
+    pt, note = _handle_point(profile)
+    if pt is not None:
         results["workspace_point"] = pt
         rows += [
             row(numbers, "workspace.handle_isotropic", "at the handle: critical stiffness, isotropic wall", "k<sub>iso</sub>",
