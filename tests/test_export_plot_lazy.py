@@ -18,6 +18,7 @@ import pytest
 from analysis.profiles import Profile
 from analysis.profiles.io import bundled_profiles, load_profile
 from analysis.transparency.design import WallDesign
+from call_counts import count_calls
 from coarse_grids import coarse_sections
 
 ALL_SECTIONS = Path(__file__).parent / "data" / "saved_profiles" / "all_sections.json"
@@ -57,16 +58,7 @@ def _sentinels() -> dict[str, tuple[tuple[object, str], ...]]:
 @pytest.fixture
 def calls(monkeypatch: pytest.MonkeyPatch) -> Iterator[Counter[str]]:
     """Counts the calls of every section's study functions, by part."""
-    counter: Counter[str] = Counter()
-    for part, targets in _sentinels().items():
-        for owner, name in targets:
-            original = getattr(owner, name)
-
-            def counted(*args: object, _f=original, _part=part, **kwargs: object) -> object:
-                counter[_part] += 1
-                return _f(*args, **kwargs)
-
-            monkeypatch.setattr(owner, name, counted)
+    counter = count_calls(monkeypatch, _sentinels())
     yield counter
 
 

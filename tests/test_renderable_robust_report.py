@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from cli_runner import run_cli
+from call_counts import count_calls
 from coarse_grids import coarse_sections
 
 from analysis.identify import parameter_box
@@ -66,15 +67,7 @@ def robust_calls(monkeypatch: pytest.MonkeyPatch) -> Iterator[Counter[str]]:
     """Counts the robust computations where the report's section looks them up."""
     import app.report.renderable_section as section
 
-    counter: Counter[str] = Counter()
-    for name in ("robust_study", "robust_m_width"):
-        original = getattr(section, name)
-
-        def counted(*args: object, _f=original, _name=name, **kwargs: object) -> object:
-            counter[_name] += 1
-            return _f(*args, **kwargs)
-
-        monkeypatch.setattr(section, name, counted)
+    counter = count_calls(monkeypatch, {name: ((section, name),) for name in ("robust_study", "robust_m_width")})
     yield counter
 
 
