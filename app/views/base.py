@@ -111,14 +111,32 @@ class LogAxis(pg.AxisItem):
 
     #: The colour the grid lines are blended over; ``None`` keeps pyqtgraph's translucent lines.
     grid_background: QColor | None = None
+    #: The geometry and bounding rectangle while the draw specs are built (``None`` otherwise):
+    #: pyqtgraph asks for the rectangle again for every tick label (a map of the geometry and of the
+    #: linked view's rectangle each time); it is reused while the geometry is the same.
+    _held_bounds: tuple[QRectF, QRectF] | None = None
 
     def generateDrawSpecs(self, p: QPainter):  # noqa: N802 - pyqtgraph API
-        specs = super().generateDrawSpecs(p)
+        self._held_bounds = (self.geometry(), super().boundingRect())
+        try:
+            specs = super().generateDrawSpecs(p)
+        finally:
+            self._held_bounds = None
         bg = self.grid_background
         if specs is None or bg is None:
             return specs
         axis_spec, tick_specs, text_specs = specs
-        return axis_spec, [(opaque_pen(pen, bg), p1, p2) for pen, p1, p2 in tick_specs], text_specs
+        opaque: dict[int, QPen] = {}  # the ticks of a level share one pen: blended once per level
+        for pen, _p1, _p2 in tick_specs:
+            if id(pen) not in opaque:
+                opaque[id(pen)] = opaque_pen(pen, bg)
+        return axis_spec, [(opaque[id(pen)], p1, p2) for pen, p1, p2 in tick_specs], text_specs
+
+    def boundingRect(self) -> QRectF:  # noqa: N802 - Qt API
+        held = self._held_bounds
+        if held is not None and held[0] == self.geometry():
+            return QRectF(held[1])
+        return super().boundingRect()
 
     def tickStrings(self, values: list[float], scale: float, spacing: float) -> list[str]:  # noqa: N802
         return [superscript_numbers(text) for text in super().tickStrings(values, scale, spacing)]

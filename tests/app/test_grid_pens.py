@@ -83,3 +83,61 @@ def test_the_hidden_axes_are_not_retypeset_on_a_range_change(qapp):
         QApplication.processEvents()
     assert changes == {"top": 0, "right": 0}
     view.deleteLater()
+
+
+def _specs(axis, build) -> tuple[list, list]:
+    """Tick positions and label rectangles and texts of ``build(axis, painter)``."""
+    image = QImage(8, 8, QImage.Format.Format_ARGB32_Premultiplied)
+    painter = QPainter(image)
+    try:
+        _axis, ticks, texts = build(axis, painter)
+    finally:
+        painter.end()
+    return ([(p1.x(), p1.y(), p2.x(), p2.y()) for _pen, p1, p2 in ticks],
+            [(r.x(), r.y(), r.width(), r.height(), text) for r, _flags, text in texts])
+
+
+@pytest.mark.parametrize("log", [False, True])
+def test_the_held_bounds_give_pyqtgraphs_own_ticks_and_labels(qapp, log):
+    """The axis reuses its bounding rectangle while it builds its draw specs (pyqtgraph asked for it
+    once per tick label): the same ticks, labels and places as pyqtgraph's own build, and the rectangle
+    is pyqtgraph's again afterwards."""
+    import pyqtgraph as pg
+
+    view = StabilityPlot()
+    view.resize(700, 420)
+    view.show()
+    view.plot.setLogMode(log, log)
+    view.plot.setXRange(0.3 if log else -3.0, 3.7 if log else 7.0, padding=0)
+    view.plot.setYRange(-1.2 if log else -0.5, 2.9 if log else 2.5, padding=0)
+    QApplication.processEvents()
+    for name in ("left", "bottom"):
+        axis = view.plot.getAxis(name)
+        ours = _specs(axis, LogAxis.generateDrawSpecs)
+        theirs = _specs(axis, pg.AxisItem.generateDrawSpecs)
+        assert ours == theirs and len(ours[1]) >= 3, name
+        assert axis.boundingRect() == pg.AxisItem.boundingRect(axis)
+    view.deleteLater()
+
+
+def test_a_geometry_change_while_the_specs_are_built_is_not_served_the_old_rectangle(qapp):
+    """A label measured after the axis was resized mid-build gets the new rectangle (the held one is
+    reused only while the geometry is the one it was taken at)."""
+    import pyqtgraph as pg
+
+    class Growing(LogAxis):
+        seen: list = []
+
+        def tickStrings(self, values, scale, spacing):  # noqa: N802 - pyqtgraph API
+            self.setGeometry(self.geometry().adjusted(0, 0, 0, 40))
+            self.seen.append((self.boundingRect(), pg.AxisItem.boundingRect(self)))
+            return super().tickStrings(values, scale, spacing)
+
+    widget = pg.PlotWidget(axisItems={"left": Growing("left")})
+    widget.resize(500, 300)
+    widget.show()
+    QApplication.processEvents()
+    axis = widget.getPlotItem().getAxis("left")
+    _specs(axis, LogAxis.generateDrawSpecs)
+    assert axis.seen and all(ours == theirs for ours, theirs in axis.seen)
+    widget.deleteLater()
